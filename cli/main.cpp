@@ -1,0 +1,195 @@
+// The plumetrace command: parses arguments and calls the library; no model logic here.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plumetrace/io.hpp"
+#include "plumetrace/probe.hpp"
+#include "plumetrace/scenario.hpp"
+#include "plumetrace/trace.hpp"
+#include "plumetrace/world.hpp"
+
+namespace pt = plumetrace;
+
+namespace {
+
+constexpr int kBadInput = 2;
+constexpr int kIoFailure = 3;
+
+// options every scenario-reading command shares
+struct ScenarioOptions {
+  std::string path;
+  std::vector<std::string> sets;
+  std::string algorithm;
+
+  void add_to(CLI::App& cmd, bool with_algorithm) {
+    cmd.add_option("scenario", path, "scenario TOML file (default: the paper's setup)");
+    cmd.add_option("--set", sets, "override a config key: key.path=value (repeatable)");
+    if (with_algorithm) {
+      cmd.add_option("--algorithm", algorithm, "casting, surge-spiral or surge-cast");
+    }
+  }
+
+  pt::Scenario load() const {
+    std::vector<pt::Setting> overrides;
+    if (!algorithm.empty()) {
+      overrides.push_back({"controller.algorithm", algorithm, true, "--algorithm"});
+    }
+    for (const auto& s : sets) overrides.push_back(pt::parse_override(s));
+    return pt::load_scenario(path, overrides);
+  }
+};
+
+std::vector<pt::Vec3> parse_points(const std::string& text) {
+  std::vector<pt::Vec3> points;
+  std::stringstream all(text);
+  std::string item;
+  while (std::getline(all, item, ';')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    double v[3];
+    char extra;
+    if (std::sscanf(item.c_str(), " %lf , %lf , %lf %c", &v[0], &v[1], &v[2], &extra) != 3) {
+      throw pt::ConfigError("--points: '" + item + "' is not x,y,z");
+    }
+    points.push_back({v[0], v[1], v[2]});
+  }
+  if (points.empty()) throw pt::ConfigError("--points: no point given (expected \"x,y,z;...\")");
+  return points;
+}
+
+std::string fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+void print_human(const pt::RunResult& r, const pt::RunInfo& info) {
+  std::cout << "plumetrace " << pt::version() << ": " << info.algorithm << ", seed " << info.seed
+            << ", trial " << info.trial << "\n"
+            << "  outcome   " << pt::outcome_name(r.outcome) << "\n"
+            << "  time      " << fixed(r.time, 2) << " s\n"
+            << "  d_t       " << fixed(r.d_t, 3) << " m (path length)\n"
+            << "  d_u       " << fixed(r.d_u, 3) << " m (upwind displacement)\n"
+            << "  overhead  " << fixed(r.overhead, 3) << " (d_t / d_u)\n"
+            << "  losses    " << r.losses << "\n"
+            << "  in odor   " << fixed(100.0 * r.odor_fraction, 1) << " % of steps\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"plumetrace: odor plume tracking simulator and benchmark"};
+  app.set_version_flag("--version", std::string(pt::version()));
+  app.require_subcommand(1);
+
+  // run
+  auto* run = app.add_subcommand("run", "simulate one run and print its metrics");
+  ScenarioOptions run_scn;
+  run_scn.add_to(*run, true);
+  std::uint64_t seed = 1, trial = 0;
+  std::string trace_path;
+  double snapshot_interval = 1.0;
+  bool json_out = false;
+  run->add_option("--seed", seed, "master seed");
+  run->add_option("--trial", trial, "trial index");
+  run->add_option("--trace", trace_path, "write the run's trace (.csv or .json)");
+  run->add_option("--snapshot-interval", snapshot_interval,
+                  "seconds between filament snapshots in the trace (0: none)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--json", json_out, "print one JSON object");
+
+  // probe
+  auto* probe = app.add_subcommand("probe", "run the plume alone and sample it at points");
+  ScenarioOptions probe_scn;
+  probe_scn.add_to(*probe, false);
+  std::string points_text;
+  pt::ProbeOptions probe_opts;
+  double probe_warmup = NAN;
+  bool probe_json = false;
+  probe->add_option("--points", points_text, "points \"x,y,z;x,y,z;...\" (m)")->required();
+  probe
+      ->add_option("--warmup", probe_warmup,
+                   "plume-only time before sampling (s; default sim.warmup)")
+      ->check(CLI::NonNegativeNumber);
+  probe->add_option("--duration", probe_opts.duration, "sampling time (s)")
+      ->check(CLI::PositiveNumber);
+  probe->add_option("--interval", probe_opts.interval, "time between samples (s)")
+      ->check(CLI::PositiveNumber);
+  probe->add_option("--seed", probe_opts.seed, "master seed");
+  probe->add_flag("--json", probe_json, "print JSON");
+
+  // config
+  auto* config = app.add_subcommand("config", "print the fully resolved configuration");
+  ScenarioOptions config_scn;
+  config_scn.add_to(*config, true);
+  bool config_json = false;
+  config->add_flag("--json", config_json, "print JSON instead of TOML");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kBadInput;
+  }
+
+  try {
+    if (*run) {
+      const pt::Scenario scenario = run_scn.load();
+      if (!trace_path.empty() && !trace_path.ends_with(".csv") && !trace_path.ends_with(".json")) {
+        throw pt::ConfigError("--trace '" + trace_path + "': the name must end in .csv or .json");
+      }
+      const pt::RunInfo info{std::string(pt::algorithm_name(scenario.controller.algorithm)), seed,
+                             trial};
+      pt::Trace trace;
+      pt::StepObserver observer;
+      if (!trace_path.empty()) {
+        observer = pt::TraceRecorder(trace, snapshot_interval, scenario.sim.dt);
+      }
+      const pt::RunResult result = pt::run_once(scenario, seed, trial, observer);
+      // print the result before writing the trace, so a failing write loses nothing computed
+      if (json_out) {
+        std::cout << pt::result_to_json(result, info) << std::endl;
+      } else {
+        print_human(result, info);
+      }
+      if (!trace_path.empty()) {
+        pt::write_trace(trace_path, trace, scenario, result, info);
+        if (!json_out) std::cout << "  trace     " << trace_path << "\n";
+      }
+    } else if (*probe) {
+      const pt::Scenario scenario = probe_scn.load();
+      const auto points = parse_points(points_text);
+      probe_opts.warmup = std::isnan(probe_warmup) ? scenario.sim.warmup : probe_warmup;
+      const auto results = pt::probe_plume(scenario, points, probe_opts);
+      if (probe_json) {
+        std::cout << pt::probe_to_json(results) << std::endl;
+      } else {
+        std::cout << "       x        y        z   detect   mean C\n";
+        for (const auto& r : results) {
+          std::printf("%8.3f %8.3f %8.3f   %6.3f   %.4g\n", r.point.x, r.point.y, r.point.z,
+                      r.detect_fraction, r.mean_concentration);
+        }
+      }
+    } else if (*config) {
+      const pt::Scenario scenario = config_scn.load();
+      std::cout << (config_json ? pt::scenario_to_json(scenario) + "\n"
+                                : pt::scenario_to_toml(scenario));
+    }
+  } catch (const pt::ConfigError& e) {
+    std::cerr << "plumetrace: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const pt::IoError& e) {
+    std::cerr << "plumetrace: error: " << e.what() << "\n";
+    return kIoFailure;
+  }
+  return 0;
+}

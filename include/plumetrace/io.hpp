@@ -1,0 +1,54 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "plumetrace/probe.hpp"
+#include "plumetrace/scenario.hpp"
+#include "plumetrace/trace.hpp"
+#include "plumetrace/world.hpp"
+
+namespace plumetrace {
+
+/// A file that cannot be read or written; the message names the file.
+class IoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The program version.
+std::string_view version();
+
+/// Reads a TOML scenario file into settings (one per key, in file order); throws ConfigError
+/// naming the file when it cannot be read or is not valid TOML (with line and column).
+std::vector<Setting> read_scenario_file(const std::string& path);
+
+/// Builds the scenario from an optional file (empty path: defaults) and then the overrides.
+Scenario load_scenario(const std::string& path, const std::vector<Setting>& overrides);
+
+/// The fully resolved scenario as TOML that reads back to the same scenario.
+std::string scenario_to_toml(const Scenario& scenario);
+
+/// The fully resolved scenario as a JSON object, nested by table.
+std::string scenario_to_json(const Scenario& scenario);
+
+/// Identifies a run: what the trace and the JSON output carry besides the result.
+struct RunInfo {
+  std::string algorithm;
+  std::uint64_t seed = 0;
+  std::uint64_t trial = 0;
+};
+
+/// One run's result as a JSON object (keys as documented for `plumetrace run --json`).
+std::string result_to_json(const RunResult& result, const RunInfo& info);
+
+/// Probe results as {"points": [...]}.
+std::string probe_to_json(const std::vector<ProbeResult>& results);
+
+/// Writes a trace: `.json` as one object; `.csv` as the step table, with the filament
+/// snapshots beside it in `<stem>.filaments.csv`. Throws IoError naming the file.
+void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
+                 const RunResult& result, const RunInfo& info);
+
+}  // namespace plumetrace

@@ -1,0 +1,133 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "plumetrace/geometry.hpp"
+#include "plumetrace/rng.hpp"
+#include "plumetrace/wind.hpp"
+
+namespace plumetrace {
+
+/// Named sets of plume parameters (SPEC section 2).
+enum class PlumePreset {
+  kLochmatter2008,  ///< what the authors' Webots plugin ran (default)
+  kPaperLiteral,    ///< the equations as printed in the paper
+};
+
+/// Where new filaments appear around the source centre.
+enum class ReleaseShape { kBall, kDisc };
+
+/// How the random-walk standard deviation per step scales with dt.
+enum class NoiseMode {
+  kVelocity,  ///< std sigma_p * dt (sigma_p in m/s), the plugin's choice
+  kPerStep,   ///< std sigma_p (sigma_p in m), paper eq. 2 as printed
+  kWiener,    ///< std sigma_p * sqrt(dt) (sigma_p in m/sqrt(s)), time-step consistent
+};
+
+/// How filaments leave the simulation.
+enum class Lifetime {
+  kRing,        ///< fixed ring buffer of `capacity` filaments; a new one overwrites the oldest
+  kLeaveArena,  ///< removed once downwind of the arena's far end; no cap
+};
+
+/// The concentration contributed by one filament.
+enum class Kernel {
+  kGaussian,  ///< s / (sqrt(8 pi^3) w^3) exp(-d^2 / w^2), the plugin's
+  kPrinted,   ///< s / w^3 exp(-d / w^2), paper eq. 5 as printed
+};
+
+/// The odor source: a disc/ball around its centre.
+struct SourceParams {
+  /// Centre of the source (m).
+  Vec3 center{1.0, 0.0, 0.0};
+  /// Radius of the source (m); filaments are released within it.
+  double radius = 0.12;
+};
+
+/// Every row of SPEC section 2's preset table; defaults are the `lochmatter2008` preset.
+struct PlumeParams {
+  /// Preset the rows below started from.
+  PlumePreset preset = PlumePreset::kLochmatter2008;
+  /// Filaments released per second (1/s).
+  double release_rate = 100.0;
+  /// Shape of the release region (radius: the source radius).
+  ReleaseShape release_shape = ReleaseShape::kBall;
+  /// Width of a new filament (m).
+  double initial_width = 0.10;
+  /// Amount of odor in one filament (molecules).
+  double amount = 8.3e9;
+  /// Scaling of the random walk with dt.
+  NoiseMode noise_mode = NoiseMode::kVelocity;
+  /// Random-walk intensity (m/s, m or m/sqrt(s) depending on noise_mode).
+  double sigma_p = 0.1;
+  /// Width growth constant per step (m^2): w += gamma / (2 w).
+  double gamma = 4e-7;
+  /// How filaments leave.
+  Lifetime lifetime = Lifetime::kRing;
+  /// Ring-buffer size (filaments), used with Lifetime::kRing.
+  int capacity = 1600;
+  /// Concentration kernel.
+  Kernel kernel = Kernel::kGaussian;
+  /// Filaments farther than this from a query point contribute nothing (m); may be infinite.
+  double cutoff = 1.0;
+};
+
+/// The parameters of a preset.
+PlumeParams plume_preset(PlumePreset preset);
+
+/// Standard deviation (m) of one random-walk component per step.
+double walk_stddev(const PlumeParams& params, double dt);
+
+/// Concentration contributed by one filament of width w (m) at squared distance d2 (m^2).
+double kernel_value(const PlumeParams& params, double w, double d2);
+
+/// The filament plume: positions and widths as arrays, advanced one dt at a time.
+class Plume {
+ public:
+  /// Creates an empty plume; filaments at x > removal_x leave under Lifetime::kLeaveArena.
+  Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
+        std::uint64_t seed);
+
+  /// One step: move existing filaments (wind at time t plus random walk, width growth), then
+  /// release new ones.
+  void step(const WindField& wind, double t);
+
+  /// Odor concentration at point u (paper eq. 4).
+  double concentration(const Vec3& u) const;
+
+  /// Number of live filaments.
+  std::size_t size() const { return x_.size(); }
+  /// Filaments released since construction.
+  std::uint64_t released() const { return released_; }
+  /// Filament x positions (m).
+  std::span<const double> x() const { return x_; }
+  /// Filament y positions (m).
+  std::span<const double> y() const { return y_; }
+  /// Filament z positions (m).
+  std::span<const double> z() const { return z_; }
+  /// Filament widths (m).
+  std::span<const double> w() const { return w_; }
+  /// Parameters in use.
+  const PlumeParams& params() const { return params_; }
+
+ private:
+  void move(const WindField& wind, double t);
+  void release();
+  Vec3 release_position();
+  void store(std::size_t i, const Vec3& p, double w);
+
+  PlumeParams params_;
+  SourceParams source_;
+  double dt_;
+  double removal_x_;
+  double walk_std_;
+  Rng rng_;
+  double release_debt_ = 0.0;
+  std::uint64_t released_ = 0;
+  std::size_t oldest_ = 0;  // ring buffer: index overwritten next once full
+  std::vector<double> x_, y_, z_, w_;
+};
+
+}  // namespace plumetrace

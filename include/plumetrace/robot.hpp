@@ -1,0 +1,34 @@
+#pragma once
+
+#include "plumetrace/geometry.hpp"
+#include "plumetrace/measurement.hpp"
+
+namespace plumetrace {
+
+/// Khepera III differential drive (SPEC section 4).
+struct RobotParams {
+  /// Body radius (m).
+  double radius = 0.065;
+  /// Distance between the wheels (m).
+  double axle = 0.0885;
+  /// Wheel-speed limit (m/s); the forward speed on straight lines.
+  double wheel_speed = 0.106;
+  /// Start position and heading (m, rad): 14.5 m downwind of the source, facing upwind.
+  Pose start{15.5, 0.0, kPi};
+};
+
+/// The robot's true state.
+struct RobotState {
+  /// True pose (m, rad).
+  Pose pose;
+  /// Path length of the centre since release (m); turning on the spot adds nothing.
+  double odometer = 0.0;
+};
+
+/// Turn rate on the spot with both wheels at the limit (rad/s).
+inline double turn_rate(const RobotParams& p) { return 2.0 * p.wheel_speed / p.axle; }
+
+/// Advances the robot by dt under a command (exact arcs; turning on the spot, then driving).
+void step_robot(const RobotParams& params, const Command& command, double dt, RobotState& state);
+
+}  // namespace plumetrace

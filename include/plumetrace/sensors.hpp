@@ -1,0 +1,69 @@
+#pragma once
+
+#include "plumetrace/geometry.hpp"
+#include "plumetrace/measurement.hpp"
+#include "plumetrace/plume.hpp"
+#include "plumetrace/rng.hpp"
+#include "plumetrace/wind.hpp"
+
+namespace plumetrace {
+
+/// Binary odor sensor (SPEC section 3).
+struct OdorSensorParams {
+  /// Concentration at or above which odor is perceived.
+  double threshold = 100.0;
+  /// Height of the sensor above the floor (m); the source centre sits at z = 0.
+  double height = 0.0;
+};
+
+/// Wind-direction sensor (paper eqs. 6-7).
+struct WindSensorParams {
+  /// Standard deviation of the noise on each wind component (m/s).
+  double sigma_a = 0.1;
+};
+
+/// Concentration at the odor sensor of a robot at `pose` (a point sample, no noise).
+double sense_concentration(const OdorSensorParams& params, const Plume& plume, const Pose& pose);
+
+/// Binary odor: the concentration reaches the threshold.
+inline bool perceives_odor(const OdorSensorParams& params, double concentration) {
+  return concentration >= params.threshold;
+}
+
+/// A noisy wind sample at `pose` and time t, rotated into the robot frame (3-D, m/s).
+Vec3 sense_wind_body(const WindSensorParams& params, const WindField& wind, const Pose& pose,
+                     double height, double t, Rng& rng);
+
+/// The wind sensor bound to the true world, as a controller sees it; records its samples.
+class WindSensor final : public WindProbe {
+ public:
+  /// Binds the sensor to the wind field, the robot pose it reads, and its random stream.
+  WindSensor(const WindSensorParams& params, const WindField& wind, const Pose& pose, double height,
+             Rng& rng)
+      : params_(params), wind_(wind), pose_(pose), height_(height), rng_(rng) {}
+
+  /// Sets the time of the next samples (s).
+  void set_time(double t) { time_ = t; }
+  Vec2 measure_wind_body() override;
+  /// Samples taken since the last clear (for traces).
+  int samples() const { return samples_; }
+  /// Last sample in the robot frame (m/s).
+  const Vec3& last_sample() const { return last_; }
+  /// Resets the per-step sample count.
+  void clear() { samples_ = 0; }
+  /// Total samples taken.
+  long total() const { return total_; }
+
+ private:
+  const WindSensorParams& params_;
+  const WindField& wind_;
+  const Pose& pose_;
+  double height_;
+  Rng& rng_;
+  double time_ = 0.0;
+  int samples_ = 0;
+  long total_ = 0;
+  Vec3 last_;
+};
+
+}  // namespace plumetrace

@@ -1,0 +1,118 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string_view>
+
+#include "plumetrace/controller.hpp"
+#include "plumetrace/plume.hpp"
+#include "plumetrace/robot.hpp"
+#include "plumetrace/scenario.hpp"
+#include "plumetrace/sensors.hpp"
+#include "plumetrace/wind.hpp"
+
+namespace plumetrace {
+
+/// How a run ended (SPEC section 6).
+enum class Outcome { kRunning, kSuccess, kWall, kTimeout, kGaveUp };
+
+/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up".
+std::string_view outcome_name(Outcome outcome);
+
+/// The metrics of one run (SPEC section 6).
+struct RunResult {
+  Outcome outcome = Outcome::kRunning;
+  /// Simulated time from release to the end (s).
+  double time = 0.0;
+  /// Path length of the robot centre (m).
+  double d_t = 0.0;
+  /// Upwind displacement, start x minus end x (m).
+  double d_u = 0.0;
+  /// d_t / d_u; NaN when d_u <= 0.
+  double overhead = 0.0;
+  /// Times the plume was declared lost.
+  int losses = 0;
+  /// Fraction of steps with odor perceived.
+  double odor_fraction = 0.0;
+  /// Steps run after release.
+  std::int64_t steps = 0;
+  /// Wind samples the controller took.
+  std::int64_t wind_samples = 0;
+  /// Master seed and trial index that replay the run.
+  std::uint64_t seed = 0;
+  std::uint64_t trial = 0;
+};
+
+/// The supervisor's verdict on a robot state at run time t (s): success, wall, timeout or running.
+Outcome supervise(const Scenario& scenario, const RobotState& robot, double t);
+
+/// One run's whole state. A fresh World per run; it is neither copied nor moved.
+class World {
+ public:
+  /// A run of the scenario's algorithm; random streams from (seed, trial).
+  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
+  /// A run driven by a given controller (the extension point for custom algorithms).
+  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+        std::unique_ptr<Controller> controller);
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// Runs the plume alone for the warm-up time; call once before the first step.
+  void warm_up();
+  /// One step: environment, sense, decide, move, check (SPEC section 2).
+  void step();
+  /// True once the run has ended.
+  bool done() const { return outcome_ != Outcome::kRunning; }
+  /// The run's metrics so far.
+  RunResult result() const;
+
+  /// Time since release (s).
+  double time() const { return static_cast<double>(steps_) * scenario_.sim.dt; }
+  /// The scenario in use.
+  const Scenario& scenario() const { return scenario_; }
+  /// The plume.
+  const Plume& plume() const { return plume_; }
+  /// The wind field.
+  const WindField& wind() const { return *wind_; }
+  /// The robot's true state.
+  const RobotState& robot() const { return robot_; }
+  /// The controller.
+  const Controller& controller() const { return *controller_; }
+  /// The wind sensor (samples taken this step).
+  const WindSensor& wind_sensor() const { return wind_sensor_; }
+  /// Odor perceived at the last step.
+  bool odor() const { return odor_; }
+  /// Concentration at the odor sensor at the last step.
+  double concentration() const { return concentration_; }
+  /// How the run ended (kRunning while it goes on).
+  Outcome outcome() const { return outcome_; }
+
+ private:
+  double plume_time() const { return warmup_time_ + time(); }
+
+  Scenario scenario_;
+  std::uint64_t seed_;
+  std::uint64_t trial_;
+  std::unique_ptr<WindField> wind_;
+  Plume plume_;
+  RobotState robot_;
+  Rng wind_rng_;
+  WindSensor wind_sensor_;
+  std::unique_ptr<Controller> controller_;
+  double warmup_time_ = 0.0;
+  std::int64_t steps_ = 0;
+  std::int64_t odor_steps_ = 0;
+  double concentration_ = 0.0;
+  bool odor_ = false;
+  Outcome outcome_ = Outcome::kRunning;
+};
+
+/// Called after the warm-up and after every step of a run.
+using StepObserver = std::function<void(const World&)>;
+
+/// Runs one whole run: a pure function of (scenario, seed, trial).
+RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                   const StepObserver& observer = {});
+
+}  // namespace plumetrace

@@ -1,0 +1,43 @@
+#include "plumetrace/probe.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plumetrace/plume.hpp"
+#include "plumetrace/sensors.hpp"
+#include "plumetrace/wind.hpp"
+
+namespace plumetrace {
+
+std::vector<ProbeResult> probe_plume(const Scenario& scenario, const std::vector<Vec3>& points,
+                                     const ProbeOptions& options) {
+  const double dt = scenario.sim.dt;
+  const auto wind = make_wind_field(scenario.wind);
+  Plume plume(scenario.plume, scenario.source, dt, scenario.arena.x_max,
+              derive_seed(options.seed, 0, Stream::kPlume));
+  const long warmup_steps = std::lround(options.warmup / dt);
+  const long steps = std::lround(options.duration / dt);
+  const long every = std::max(1L, std::lround(options.interval / dt));
+
+  std::vector<ProbeResult> results(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) results[i].point = points[i];
+  for (long k = 0; k < warmup_steps + steps; ++k) {
+    plume.step(*wind, static_cast<double>(k) * dt);
+    const long since = k + 1 - warmup_steps;
+    if (since <= 0 || since % every != 0) continue;
+    for (auto& r : results) {
+      const double c = plume.concentration(r.point);
+      r.mean_concentration += c;
+      if (perceives_odor(scenario.odor, c)) r.detect_fraction += 1.0;
+      ++r.samples;
+    }
+  }
+  for (auto& r : results) {
+    if (r.samples == 0) continue;
+    r.mean_concentration /= static_cast<double>(r.samples);
+    r.detect_fraction /= static_cast<double>(r.samples);
+  }
+  return results;
+}
+
+}  // namespace plumetrace

@@ -1,0 +1,127 @@
+#include "plumetrace/world.hpp"
+
+#include <cmath>
+
+namespace plumetrace {
+
+std::string_view outcome_name(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kRunning:
+      return "running";
+    case Outcome::kSuccess:
+      return "success";
+    case Outcome::kWall:
+      return "wall";
+    case Outcome::kTimeout:
+      return "timeout";
+    case Outcome::kGaveUp:
+      return "gave_up";
+  }
+  return "";
+}
+
+Outcome supervise(const Scenario& scenario, const RobotState& robot, double t) {
+  const Pose& p = robot.pose;
+  const auto& src = scenario.source.center;
+  const double dx = p.x - src.x, dy = p.y - src.y;
+  const double rs = scenario.supervisor.success_radius;
+  if (dx * dx + dy * dy <= rs * rs) return Outcome::kSuccess;
+  const auto& a = scenario.arena;
+  const double r = scenario.robot.radius;
+  if (p.x - a.x_min < r || a.x_max - p.x < r || p.y - a.y_min < r || a.y_max - p.y < r) {
+    return Outcome::kWall;
+  }
+  if (t >= scenario.supervisor.timeout) return Outcome::kTimeout;
+  return Outcome::kRunning;
+}
+
+World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial)
+    : World(scenario, seed, trial,
+            make_controller(scenario.controller,
+                            Rng(derive_seed(seed, trial, Stream::kController)))) {}
+
+World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+             std::unique_ptr<Controller> controller)
+    : scenario_(scenario),
+      seed_(seed),
+      trial_(trial),
+      wind_(make_wind_field(scenario.wind)),
+      plume_(scenario.plume, scenario.source, scenario.sim.dt, scenario.arena.x_max,
+             derive_seed(seed, trial, Stream::kPlume)),
+      robot_{scenario.robot.start, 0.0},
+      wind_rng_(derive_seed(seed, trial, Stream::kWindSensor)),
+      wind_sensor_(scenario_.wind_sensor, *wind_, robot_.pose, scenario_.odor.height, wind_rng_),
+      controller_(std::move(controller)) {}
+
+void World::warm_up() {
+  const auto steps =
+      static_cast<std::int64_t>(std::llround(scenario_.sim.warmup / scenario_.sim.dt));
+  for (std::int64_t i = 0; i < steps; ++i) {
+    plume_.step(*wind_, static_cast<double>(i) * scenario_.sim.dt);
+  }
+  warmup_time_ = static_cast<double>(steps) * scenario_.sim.dt;
+  // what the sensor reads at release (for traces; the controller first senses after one step)
+  concentration_ = sense_concentration(scenario_.odor, plume_, robot_.pose);
+  odor_ = perceives_odor(scenario_.odor, concentration_);
+}
+
+void World::step() {
+  if (done()) return;
+  const double dt = scenario_.sim.dt;
+
+  // environment: filaments move, then new ones are released
+  plume_.step(*wind_, plume_time());
+  ++steps_;
+
+  // sense
+  concentration_ = sense_concentration(scenario_.odor, plume_, robot_.pose);
+  odor_ = perceives_odor(scenario_.odor, concentration_);
+  if (odor_) ++odor_steps_;
+  const Observation obs{time(), odor_, robot_.pose, robot_.odometer};
+  wind_sensor_.clear();
+  wind_sensor_.set_time(plume_time());
+
+  // decide
+  const Command command = controller_->step(obs, wind_sensor_);
+  if (command.give_up) {
+    outcome_ = Outcome::kGaveUp;
+    return;
+  }
+
+  // move
+  step_robot(scenario_.robot, command, dt, robot_);
+
+  // check
+  outcome_ = supervise(scenario_, robot_, time());
+}
+
+RunResult World::result() const {
+  RunResult r;
+  r.outcome = outcome_;
+  r.time = time();
+  r.d_t = robot_.odometer;
+  r.d_u = scenario_.robot.start.x - robot_.pose.x;
+  r.overhead = r.d_u > 0.0 ? r.d_t / r.d_u : NAN;
+  r.losses = controller_->losses();
+  r.odor_fraction =
+      steps_ > 0 ? static_cast<double>(odor_steps_) / static_cast<double>(steps_) : 0.0;
+  r.steps = steps_;
+  r.wind_samples = wind_sensor_.total();
+  r.seed = seed_;
+  r.trial = trial_;
+  return r;
+}
+
+RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                   const StepObserver& observer) {
+  World world(scenario, seed, trial);
+  world.warm_up();
+  if (observer) observer(world);
+  while (!world.done()) {
+    world.step();
+    if (observer) observer(world);
+  }
+  return world.result();
+}
+
+}  // namespace plumetrace

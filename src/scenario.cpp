@@ -21,11 +21,29 @@ ChoiceField choice(E& value, std::vector<std::string> names) {
           [&value](int i) { value = static_cast<E>(i); }};
 }
 
+// the file value whose SI value is `si`: the shortest decimal that converts back exactly
+double unscale(double si, double scale) {
+  if (scale == 1.0 || !std::isfinite(si)) return si / scale;
+  char buf[40];
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, si / scale);
+    const double d = std::strtod(buf, nullptr);
+    if (d * scale == si) return d;
+  }
+  return si / scale;
+}
+
+std::string bound_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 std::string range_text(const NumberField& f) {
   std::string lo =
-      f.min == -INFINITY ? "" : (f.min_open ? "> " : ">= ") + format_number(f.min / f.scale);
+      f.min == -INFINITY ? "" : (f.min_open ? "> " : ">= ") + bound_text(unscale(f.min, f.scale));
   std::string hi =
-      f.max == INFINITY ? "" : (f.max_open ? "< " : "<= ") + format_number(f.max / f.scale);
+      f.max == INFINITY ? "" : (f.max_open ? "< " : "<= ") + bound_text(unscale(f.max, f.scale));
   if (lo.empty() && hi.empty()) return "a number";
   if (lo.empty()) return "a number " + hi;
   if (hi.empty()) return "a number " + lo;
@@ -222,7 +240,7 @@ ConfigValue get_field(const Scenario& scenario, std::string_view key) {
   const auto fields = scenario_fields(copy);
   const Field* f = find(fields, key);
   if (!f) unknown_key(fields, key);
-  if (const auto* num = std::get_if<NumberField>(&f->kind)) return *num->value / num->scale;
+  if (const auto* num = std::get_if<NumberField>(&f->kind)) return unscale(*num->value, num->scale);
   if (const auto* in = std::get_if<IntegerField>(&f->kind)) {
     return static_cast<std::int64_t>(*in->value);
   }
@@ -235,7 +253,7 @@ void validate(const Scenario& scenario) {
   Scenario copy = scenario;
   for (const auto& f : scenario_fields(copy)) {
     if (const auto* num = std::get_if<NumberField>(&f.kind)) {
-      check_number(f.key, *num, *num->value / num->scale);
+      check_number(f.key, *num, unscale(*num->value, num->scale));
     }
   }
   // relations between keys

@@ -1,0 +1,183 @@
+// The plumetrace command, run as a user would: outputs, exit codes and error messages.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace plumetrace {
+namespace {
+
+using nlohmann::json;
+
+const std::string kCli = PLUMETRACE_CLI;
+const std::string kScenarios = std::string(PLUMETRACE_SOURCE_DIR) + "/scenarios/";
+
+struct Output {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// runs the command with `args`, capturing stdout, stderr and the exit code
+Output cli(const std::string& args) {
+  const std::string err_path = ::testing::TempDir() + "cli_stderr.txt";
+  const std::string command = kCli + " " + args + " 2>" + err_path;
+  Output o;
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return o;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) o.out.append(buf, n);
+  const int status = pclose(pipe);
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  o.err = read_file(err_path);
+  return o;
+}
+
+TEST(Cli, RunJsonHasEveryDocumentedKey) {
+  const Output o = cli("run --algorithm surge-spiral --seed 3 --trial 2 --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json j = json::parse(o.out);
+  for (const char* key : {"outcome", "success", "time_s", "d_t", "d_u", "overhead", "losses",
+                          "seed", "trial"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["seed"], 3);
+  EXPECT_EQ(j["trial"], 2);
+  EXPECT_EQ(j["algorithm"], "surge-spiral");
+  EXPECT_EQ(j["success"], j["outcome"] == "success");
+  const std::string outcome = j["outcome"];
+  EXPECT_TRUE(outcome == "success" || outcome == "wall" || outcome == "timeout" ||
+              outcome == "gave_up")
+      << outcome;
+}
+
+TEST(Cli, SameSeedGivesTheSameOutputAndAnotherTrialDiffers) {
+  const Output a = cli("run --algorithm casting --seed 5 --trial 1 --json");
+  const Output b = cli("run --algorithm casting --seed 5 --trial 1 --json");
+  const Output c = cli("run --algorithm casting --seed 5 --trial 2 --json");
+  ASSERT_EQ(a.code, 0);
+  EXPECT_EQ(a.out, b.out);
+  EXPECT_NE(a.out, c.out);
+}
+
+TEST(Cli, ScenarioFileAndSetAreApplied) {
+  const Output o = cli("config " + kScenarios + "paper-literal.toml --set plume.sigma_p=0.2 --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json j = json::parse(o.out);
+  EXPECT_EQ(j["plume"]["preset"], "paper-literal");
+  EXPECT_EQ(j["plume"]["kernel"], "printed");
+  EXPECT_EQ(j["plume"]["sigma_p"], 0.2);
+}
+
+TEST(Cli, PrintedConfigRunsTheSameAsTheOptionsThatMadeIt) {
+  const std::string path = ::testing::TempDir() + "resolved_cli.toml";
+  const Output config = cli("config --algorithm surge-cast --set surge_cast.d_cast=0.4");
+  ASSERT_EQ(config.code, 0) << config.err;
+  std::ofstream(path) << config.out;
+  const Output a = cli("run --algorithm surge-cast --set surge_cast.d_cast=0.4 --json");
+  const Output b = cli("run " + path + " --json");
+  EXPECT_EQ(a.out, b.out);
+}
+
+TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
+  struct Case {
+    std::string args, expect;
+  };
+  const Case cases[] = {
+      {"run --set sim.dt=0 --json", "sim.dt"},
+      {"run --set plume.nonsense=1", "unknown config key 'plume.nonsense'"},
+      {"run --set plume.capacity=0", "plume.capacity"},
+      {"run --algorithm zigzag", "controller.algorithm"},
+      {"run --set plume.preset=foo", "plume.preset"},
+      {"run --set robot.wheel_speed=-0.1", "robot.wheel_speed"},
+      {"run --set odor.threshold=0", "odor.threshold"},
+      {"run no/such/scenario.toml", "no/such/scenario.toml"},
+      {"probe --points 1,2", "--points"},
+      {"config --set supervisor.success_radius=0", "supervisor.success_radius"},
+      {"run --trace out.txt", "out.txt"},
+      {"run --no-such-flag", "no-such-flag"},
+  };
+  for (const auto& c : cases) {
+    const Output o = cli(c.args);
+    EXPECT_EQ(o.code, 2) << c.args;
+    EXPECT_EQ(o.out, "") << c.args;
+    EXPECT_NE(o.err.find(c.expect), std::string::npos) << c.args << " said: " << o.err;
+  }
+}
+
+TEST(Cli, CsvTraceHoldsStepsAndFilamentSnapshots) {
+  const std::string path = ::testing::TempDir() + "trace_test.csv";
+  const Output o = cli("run --algorithm surge-cast --set supervisor.timeout=5 --trace " + path +
+                       " --snapshot-interval 1 --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json result = json::parse(o.out);
+  std::istringstream steps(read_file(path));
+  std::string header, line;
+  std::getline(steps, header);
+  EXPECT_EQ(header.rfind("time,x,y,heading,odometer,state,odor,concentration,wind_samples", 0), 0u);
+  int rows = 0;
+  while (std::getline(steps, line)) ++rows;
+  // one row at release plus one per step
+  EXPECT_EQ(rows, result["steps"].get<int>() + 1);
+
+  const std::string filaments = read_file(::testing::TempDir() + "trace_test.filaments.csv");
+  EXPECT_EQ(filaments.rfind("time,x,y,z,w\n", 0), 0u);
+  // snapshots at 0..5 s, 1600 filaments each after the 20 s warm-up
+  const auto lines = std::count(filaments.begin(), filaments.end(), '\n');
+  EXPECT_EQ(lines, 1 + 6 * 1600);
+}
+
+TEST(Cli, JsonTraceMatchesTheRunResult) {
+  const std::string path = ::testing::TempDir() + "trace_test.json";
+  const Output o = cli("run --algorithm casting --set supervisor.timeout=3 --trace " + path +
+                       " --snapshot-interval 0.5 --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json trace = json::parse(read_file(path));
+  EXPECT_EQ(trace["result"], json::parse(o.out));
+  const auto& steps = trace["steps"];
+  const std::size_t n = steps["time"].size();
+  EXPECT_EQ(n, trace["result"]["steps"].get<std::size_t>() + 1);
+  for (const char* col : {"x", "y", "heading", "state", "odor", "wind_x_body"}) {
+    EXPECT_EQ(steps[col].size(), n) << col;
+  }
+  // the interval is rounded to whole steps: every 16 steps (0.512 s), starting at release
+  const auto every = std::lround(0.5 / 0.032);
+  EXPECT_EQ(trace["snapshots"].size(), static_cast<std::size_t>((n - 1) / every + 1));
+  EXPECT_EQ(trace["snapshots"][1]["time"], every * 0.032);
+  EXPECT_EQ(trace["config"]["controller"]["algorithm"], "casting");
+  // the wind is sampled at release: the first step carries a sample
+  EXPECT_EQ(steps["wind_samples"][1], 1);
+  EXPECT_FALSE(steps["wind_x_body"][1].is_null());
+}
+
+TEST(Cli, ProbeReportsEveryPoint) {
+  const Output o = cli("probe --points \"8,0,0;8,1.5,0\" --duration 5 --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json j = json::parse(o.out);
+  ASSERT_EQ(j["points"].size(), 2u);
+  EXPECT_EQ(j["points"][1]["y"], 1.5);
+  EXPECT_GT(j["points"][0]["detect_fraction"].get<double>(), 0.5);
+  EXPECT_EQ(j["points"][1]["detect_fraction"].get<double>(), 0.0);
+}
+
+TEST(Cli, HumanOutputNamesTheOutcome) {
+  const Output o = cli("run --algorithm surge-spiral --set supervisor.timeout=2");
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("outcome   timeout"), std::string::npos) << o.out;
+}
+
+}  // namespace
+}  // namespace plumetrace

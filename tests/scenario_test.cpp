@@ -1,0 +1,160 @@
+#include "plumetrace/scenario.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "plumetrace/io.hpp"
+
+namespace plumetrace {
+namespace {
+
+const std::string kScenarios = std::string(PLUMETRACE_SOURCE_DIR) + "/scenarios/";
+
+// the message of the ConfigError thrown by `f`, or "" when none is thrown
+template <class F>
+std::string config_error(F&& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string error_of_override(const std::string& text) {
+  return config_error([&] { build_scenario({parse_override(text)}); });
+}
+
+TEST(Scenario, DefaultScenarioFileEqualsBuiltInDefaults) {
+  const Scenario from_file = load_scenario(kScenarios + "lochmatter2008.toml", {});
+  EXPECT_EQ(scenario_to_toml(from_file), scenario_to_toml(Scenario{}));
+}
+
+TEST(Scenario, PaperLiteralFileSetsEveryPresetRow) {
+  const Scenario s = load_scenario(kScenarios + "paper-literal.toml", {});
+  EXPECT_EQ(scenario_to_toml(s.plume.preset == PlumePreset::kPaperLiteral ? s : Scenario{}),
+            scenario_to_toml(s));
+  EXPECT_EQ(s.plume.release_shape, ReleaseShape::kDisc);
+  EXPECT_EQ(s.plume.noise_mode, NoiseMode::kPerStep);
+  EXPECT_EQ(s.plume.lifetime, Lifetime::kLeaveArena);
+  EXPECT_EQ(s.plume.kernel, Kernel::kPrinted);
+  EXPECT_TRUE(std::isinf(s.plume.cutoff));
+}
+
+TEST(Scenario, ExplicitRowsWinOverThePresetWhateverTheirOrder) {
+  // the row is given before the preset, and still wins
+  const Scenario s = build_scenario(
+      {parse_override("plume.kernel=gaussian"), parse_override("plume.preset=paper-literal")});
+  EXPECT_EQ(s.plume.kernel, Kernel::kGaussian);
+  EXPECT_EQ(s.plume.noise_mode, NoiseMode::kPerStep);
+}
+
+TEST(Scenario, ResolvedTomlReadsBackToTheSameScenario) {
+  const Scenario s = build_scenario({parse_override("plume.preset=paper-literal"),
+                                     parse_override("casting.beta_deg=33.3"),
+                                     parse_override("wind_sensor.sigma_a=0.45")});
+  const std::string toml = scenario_to_toml(s);
+  const std::string path = ::testing::TempDir() + "resolved.toml";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs(toml.c_str(), f);
+    std::fclose(f);
+  }
+  const Scenario back = load_scenario(path, {});
+  EXPECT_EQ(scenario_to_toml(back), toml);
+  EXPECT_EQ(back.controller.casting.beta, s.controller.casting.beta);
+}
+
+TEST(Scenario, DegreesAreStoredInRadiansAndPrintedInDegrees) {
+  const Scenario s = build_scenario({parse_override("casting.beta_deg=30")});
+  EXPECT_DOUBLE_EQ(s.controller.casting.beta, kPi / 6.0);
+  EXPECT_EQ(format_value(get_field(s, "casting.beta_deg")), "30.0");
+}
+
+TEST(Scenario, EveryFieldReadsBackWhatWasSet) {
+  Scenario s;
+  for (const auto& f : scenario_fields(s)) {
+    const ConfigValue v = get_field(Scenario{}, f.key);
+    Scenario t;
+    set_field(t, f.key, v);
+    EXPECT_EQ(format_value(get_field(t, f.key)), format_value(v)) << f.key;
+  }
+}
+
+TEST(Scenario, UnknownKeyIsNamed) {
+  const std::string msg = error_of_override("plume.sigma=0.2");
+  EXPECT_NE(msg.find("unknown config key 'plume.sigma'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("plume.sigma_p"), std::string::npos) << msg;  // suggests the real keys
+}
+
+TEST(Scenario, InvalidValuesNameTheKeyAndTheAllowedRange) {
+  struct Case {
+    std::string set, expect;
+  };
+  const Case cases[] = {
+      {"sim.dt=0", "sim.dt: must be a number > 0"},
+      {"sim.dt=-0.1", "sim.dt: must be a number > 0"},
+      {"robot.wheel_speed=-1", "robot.wheel_speed: must be a number > 0"},
+      {"robot.radius=0", "robot.radius: must be a number > 0"},
+      {"source.radius=0", "source.radius: must be a number > 0"},
+      {"supervisor.success_radius=0", "supervisor.success_radius: must be a number > 0"},
+      {"odor.threshold=0", "odor.threshold: must be a number > 0"},
+      {"plume.capacity=0", "plume.capacity: must be an integer >= 1"},
+      {"plume.capacity=1.5", "plume.capacity: must be an integer >= 1"},
+      {"wind_sensor.sigma_a=-0.1", "wind_sensor.sigma_a: must be a number >= 0"},
+      {"casting.beta_deg=90", "casting.beta_deg: must be a number >= 0 and < 90"},
+      {"sim.dt=abc", "sim.dt: must be a number > 0 (got 'abc')"},
+      {"controller.algorithm=zigzag",
+       "controller.algorithm: must be one of 'casting', 'surge-spiral', 'surge-cast'"},
+      {"plume.preset=foo", "plume.preset: must be one of 'lochmatter2008', 'paper-literal'"},
+      {"plume.noise_mode=brownian", "plume.noise_mode: must be one of 'velocity'"},
+  };
+  for (const auto& c : cases) {
+    const std::string msg = error_of_override(c.set);
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << c.set << " gave: " << msg;
+  }
+}
+
+TEST(Scenario, RelationsBetweenKeysAreChecked) {
+  EXPECT_NE(error_of_override("arena.x_max=-1").find("arena.x_max"), std::string::npos);
+  EXPECT_NE(error_of_override("robot.start_y=1.99").find("robot.start_y"), std::string::npos);
+  EXPECT_NE(error_of_override("source.x=20").find("source.x"), std::string::npos);
+}
+
+TEST(Scenario, OverrideWithoutEqualsSignIsRejected) {
+  const std::string msg = config_error([] { parse_override("sim.dt"); });
+  EXPECT_NE(msg.find("key.path=value"), std::string::npos) << msg;
+}
+
+TEST(Scenario, FileErrorsNameTheFile) {
+  const std::string missing = config_error([] { load_scenario("no/such/file.toml", {}); });
+  EXPECT_NE(missing.find("no/such/file.toml"), std::string::npos) << missing;
+
+  const std::string path = ::testing::TempDir() + "bad.toml";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("[plume]\nsigma_p = 0.1\nbogus = 3\n", f);
+  std::fclose(f);
+  const std::string unknown = config_error([&] { load_scenario(path, {}); });
+  EXPECT_NE(unknown.find(path), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("plume.bogus"), std::string::npos) << unknown;
+
+  f = std::fopen(path.c_str(), "w");
+  std::fputs("[plume\nsigma_p = \n", f);
+  std::fclose(f);
+  const std::string syntax = config_error([&] { load_scenario(path, {}); });
+  EXPECT_NE(syntax.find(path + ":1:"), std::string::npos) << syntax;
+}
+
+TEST(Scenario, FormatNumberRoundTrips) {
+  for (double v : {0.1, 0.032, 8.3e9, 4e-7, 1.0 / 3.0, 0.614, 15.5, -2.0}) {
+    EXPECT_EQ(std::strtod(format_number(v).c_str(), nullptr), v);
+  }
+  EXPECT_EQ(format_number(INFINITY), "inf");
+}
+
+}  // namespace
+}  // namespace plumetrace

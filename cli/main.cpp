@@ -28,7 +28,8 @@ struct ScenarioOptions {
 
   void add_to(CLI::App& cmd, bool with_algorithm) {
     cmd.add_option("scenario", path, "scenario TOML file (default: the paper's setup)");
-    cmd.add_option("--set", sets, "override a config key: key.path=value (repeatable)");
+    cmd.add_option("--set", sets, "override a config key: key.path=value (repeatable)")
+        ->allow_extra_args(false);
     if (with_algorithm) {
       cmd.add_option("--algorithm", algorithm, "casting, surge-spiral or surge-cast");
     }

@@ -74,12 +74,15 @@ TEST(Cli, SameSeedGivesTheSameOutputAndAnotherTrialDiffers) {
 }
 
 TEST(Cli, ScenarioFileAndSetAreApplied) {
-  const Output o = cli("config " + kScenarios + "paper-literal.toml --set plume.sigma_p=0.2 --json");
+  // --set may come before the scenario file without swallowing it
+  const Output o = cli("config --set plume.sigma_p=0.2 " + kScenarios +
+                       "paper-literal.toml --set odor.threshold=50 --json");
   ASSERT_EQ(o.code, 0) << o.err;
   const json j = json::parse(o.out);
   EXPECT_EQ(j["plume"]["preset"], "paper-literal");
   EXPECT_EQ(j["plume"]["kernel"], "printed");
   EXPECT_EQ(j["plume"]["sigma_p"], 0.2);
+  EXPECT_EQ(j["odor"]["threshold"], 50.0);
 }
 
 TEST(Cli, PrintedConfigRunsTheSameAsTheOptionsThatMadeIt) {

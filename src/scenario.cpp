@@ -1,5 +1,6 @@
 #include "plumetrace/scenario.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +38,18 @@ std::string bound_text(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
+}
+
+// why: the names and their order come from the controller registry, so they are written once
+ChoiceField algorithm_choice(Algorithm& value) {
+  const auto& all = all_algorithms();
+  std::vector<std::string> names;
+  for (const Algorithm a : all) names.emplace_back(algorithm_name(a));
+  return {std::move(names),
+          [&value, &all] {
+            return static_cast<int>(std::find(all.begin(), all.end(), value) - all.begin());
+          },
+          [&value, &all](int i) { value = all[static_cast<std::size_t>(i)]; }};
 }
 
 std::string range_text(const NumberField& f) {
@@ -207,7 +220,7 @@ std::vector<Field> scenario_fields(Scenario& s) {
        positive(s.supervisor.success_radius)},
       {"supervisor.timeout", "run time limit after release (s)", positive(s.supervisor.timeout)},
       {"controller.algorithm", "algorithm driving the robot",
-       choice(c.algorithm, {"casting", "surge-spiral", "surge-cast"})},
+       algorithm_choice(c.algorithm)},
       {"casting.beta_deg", "upwind leg angle to the measured upwind direction (deg)",
        NumberField{&c.casting.beta, 0.0, 90.0 * deg, false, true, deg}},
       {"casting.d_lost", "path length without odor before the plume is lost (m)",

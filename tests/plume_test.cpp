@@ -46,6 +46,15 @@ void expect_zero_mean_normal(const std::vector<double>& samples, double stddev) 
   EXPECT_NEAR(s2 / n, var, 4.0 * std::sqrt(2.0 / n) * var);
 }
 
+// Per-axis second moment of the release offsets: E[d^2] = m2, Var(d^2) = m4 - m2^2, 4 sigma.
+void expect_second_moment(const std::vector<Vec3>& offsets, double Vec3::*axis, double m2,
+                          double m4) {
+  const double n = static_cast<double>(offsets.size());
+  double s = 0.0;
+  for (const Vec3& d : offsets) s += (d.*axis) * (d.*axis);
+  EXPECT_NEAR(s / n, m2, 4.0 * std::sqrt((m4 - m2 * m2) / n));
+}
+
 // Binomial fraction check: k successes in n trials with probability p, 4 sigma.
 void expect_fraction(std::int64_t k, std::int64_t n, double p) {
   const double nn = static_cast<double>(n);
@@ -183,9 +192,13 @@ TEST(Plume, ReleasesThreeOrFourPerStepAndExactlyHundredPerSecond) {
     EXPECT_TRUE(now - before == 3 || now - before == 4) << "step " << n;
     ASSERT_EQ(static_cast<std::int64_t>(now), released_after(n)) << "step " << n;
     before = now;
-    if (n == 100) EXPECT_EQ(now, 320u);
+    if (n == 100) {
+      EXPECT_EQ(now, 320u);
+    }
     // whole seconds that are whole steps: every 4 s = 125 steps
-    if (n % 125 == 0) EXPECT_EQ(now, static_cast<std::uint64_t>(100 * (n / 125) * 4));
+    if (n % 125 == 0) {
+      EXPECT_EQ(now, static_cast<std::uint64_t>(100 * (n / 125) * 4));
+    }
   }
 }
 
@@ -231,6 +244,11 @@ TEST(Plume, BallReleaseIsUniformInThreeDimensionalBall) {
   expect_fraction(inner, n, 1.0 / 8.0);  // volume fraction of the half-radius ball
   expect_fraction(front, n, 0.5);
   expect_fraction(above, n, 0.5);
+  // uniform ball: E[x^2] = R^2 / 5 and E[x^4] = 3 R^4 / 35 on each axis
+  const double rr = r * r;
+  for (double Vec3::*axis : {&Vec3::x, &Vec3::y, &Vec3::z}) {
+    expect_second_moment(offsets, axis, rr / 5.0, 3.0 * rr * rr / 35.0);
+  }
 }
 
 TEST(Plume, DiscReleaseIsUniformInHorizontalDiscAtSourceHeight) {
@@ -253,6 +271,11 @@ TEST(Plume, DiscReleaseIsUniformInHorizontalDiscAtSourceHeight) {
   expect_fraction(inner, n, 1.0 / 4.0);  // area fraction of the half-radius disc
   expect_fraction(front, n, 0.5);
   expect_fraction(left, n, 0.5);
+  // uniform disc: E[x^2] = R^2 / 4 and E[x^4] = R^4 / 8 on each horizontal axis
+  const double rr = r * r;
+  for (double Vec3::*axis : {&Vec3::x, &Vec3::y}) {
+    expect_second_moment(offsets, axis, rr / 4.0, rr * rr / 8.0);
+  }
 }
 
 // Expected x positions after n steps of a point source at x = 1 in wind (1, 0, 0) without noise,
@@ -284,6 +307,8 @@ TEST(Plume, RingBufferSaturatesAtCapacityAndOverwritesOldest) {
     const auto want = expected_x(n, std::max<std::int64_t>(1, released - 1599), released);
     ASSERT_EQ(xs.size(), want.size());
     for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_NEAR(xs[i], want[i], 1e-9) << n;
+    // without growth an overwritten slot holds a fresh filament of the initial width
+    for (double w : plume.w()) EXPECT_EQ(w, params.initial_width);
   }
   // after 32 s the oldest is 16 s old: 1600 filaments at 100/s, minus less than one step
   const double oldest = *std::max_element(plume.x().begin(), plume.x().end()) - 1.0;

@@ -1,5 +1,6 @@
 // The plumetrace command: parses arguments and calls the library; no model logic here.
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -45,6 +46,17 @@ struct ScenarioOptions {
   }
 };
 
+// a whole number in [0, 2^64); CLI11 would wrap "-1" silently
+std::uint64_t parse_u64(const std::string& option, const std::string& text) {
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) {
+    throw pt::ConfigError(
+        option + ": must be a whole number from 0 to 18446744073709551615 (got '" + text + "')");
+  }
+  return v;
+}
+
 std::vector<pt::Vec3> parse_points(const std::string& text) {
   std::vector<pt::Vec3> points;
   std::stringstream all(text);
@@ -53,7 +65,8 @@ std::vector<pt::Vec3> parse_points(const std::string& text) {
     if (item.find_first_not_of(" \t") == std::string::npos) continue;
     double v[3];
     char extra;
-    if (std::sscanf(item.c_str(), " %lf , %lf , %lf %c", &v[0], &v[1], &v[2], &extra) != 3) {
+    if (std::sscanf(item.c_str(), " %lf , %lf , %lf %c", &v[0], &v[1], &v[2], &extra) != 3 ||
+        !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
       throw pt::ConfigError("--points: '" + item + "' is not x,y,z");
     }
     points.push_back({v[0], v[1], v[2]});
@@ -92,12 +105,12 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "simulate one run and print its metrics");
   ScenarioOptions run_scn;
   run_scn.add_to(*run, true);
-  std::uint64_t seed = 1, trial = 0;
+  std::string seed_text = "1", trial_text = "0";
   std::string trace_path;
   double snapshot_interval = 1.0;
   bool json_out = false;
-  run->add_option("--seed", seed, "master seed");
-  run->add_option("--trial", trial, "trial index");
+  run->add_option("--seed", seed_text, "master seed (default 1)");
+  run->add_option("--trial", trial_text, "trial index (default 0)");
   run->add_option("--trace", trace_path, "write the run's trace (.csv or .json)");
   run->add_option("--snapshot-interval", snapshot_interval,
                   "seconds between filament snapshots in the trace (0: none)")
@@ -110,18 +123,18 @@ int main(int argc, char** argv) {
   probe_scn.add_to(*probe, false);
   std::string points_text;
   pt::ProbeOptions probe_opts;
-  double probe_warmup = NAN;
   bool probe_json = false;
   probe->add_option("--points", points_text, "points \"x,y,z;x,y,z;...\" (m)")->required();
   probe
-      ->add_option("--warmup", probe_warmup,
+      ->add_option("--warmup", probe_opts.warmup,
                    "plume-only time before sampling (s; default sim.warmup)")
       ->check(CLI::NonNegativeNumber);
   probe->add_option("--duration", probe_opts.duration, "sampling time (s)")
       ->check(CLI::PositiveNumber);
   probe->add_option("--interval", probe_opts.interval, "time between samples (s)")
       ->check(CLI::PositiveNumber);
-  probe->add_option("--seed", probe_opts.seed, "master seed");
+  std::string probe_seed_text = "1";
+  probe->add_option("--seed", probe_seed_text, "master seed (default 1)");
   probe->add_flag("--json", probe_json, "print JSON");
 
   // config
@@ -145,9 +158,10 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       const pt::Scenario scenario = run_scn.load();
-      if (!trace_path.empty() && !trace_path.ends_with(".csv") && !trace_path.ends_with(".json")) {
-        throw pt::ConfigError("--trace '" + trace_path + "': the name must end in .csv or .json");
-      }
+      const std::uint64_t seed = parse_u64("--seed", seed_text);
+      const std::uint64_t trial = parse_u64("--trial", trial_text);
+      // fail on an unwritable trace before spending the run
+      if (!trace_path.empty()) pt::check_trace_path(trace_path);
       const pt::RunInfo info{std::string(pt::algorithm_name(scenario.controller.algorithm)), seed,
                              trial};
       pt::Trace trace;
@@ -169,7 +183,7 @@ int main(int argc, char** argv) {
     } else if (*probe) {
       const pt::Scenario scenario = probe_scn.load();
       const auto points = parse_points(points_text);
-      probe_opts.warmup = std::isnan(probe_warmup) ? scenario.sim.warmup : probe_warmup;
+      probe_opts.seed = parse_u64("--seed", probe_seed_text);
       const auto results = pt::probe_plume(scenario, points, probe_opts);
       if (probe_json) {
         std::cout << pt::probe_to_json(results) << std::endl;

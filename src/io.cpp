@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -31,7 +32,10 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
     } else if (const auto* b = node.as_boolean()) {
       out.push_back({key, b->get(), false, path});
     } else {
-      throw ConfigError(path + ": " + key + ": expected a number or a string");
+      // why: let the key's own check reject it, so the message names the key and its range
+      // (or says the key is unknown)
+      out.push_back(
+          {key, std::string(node.is_array() ? "<array>" : "<date or time>"), false, path});
     }
   }
 }
@@ -81,10 +85,14 @@ json result_json(const RunResult& r, const RunInfo& info) {
 std::string_view version() { return kVersion; }
 
 std::vector<Setting> read_scenario_file(const std::string& path) {
+  std::error_code ec;
   std::ifstream in(path);
-  if (!in) throw ConfigError("cannot read scenario file '" + path + "'");
+  if (!std::filesystem::is_regular_file(path, ec) || !in) {
+    throw ConfigError("cannot read scenario file '" + path + "'");
+  }
   std::stringstream buffer;
   buffer << in.rdbuf();
+  if (in.bad()) throw ConfigError("cannot read scenario file '" + path + "'");
   toml::table table;
   try {
     table = toml::parse(buffer.str(), path);
@@ -154,6 +162,15 @@ std::string probe_to_json(const std::vector<ProbeResult>& results) {
                       {"samples", r.samples}});
   }
   return json{{"points", points}}.dump();
+}
+
+void check_trace_path(const std::string& path) {
+  if (!ends_with(path, ".csv") && !ends_with(path, ".json")) {
+    throw ConfigError("--trace '" + path + "': the name must end in .csv or .json");
+  }
+  std::vector<std::string> files{path};
+  if (ends_with(path, ".csv")) files.push_back(path.substr(0, path.size() - 4) + ".filaments.csv");
+  for (const auto& f : files) open_for_writing(f);
 }
 
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,

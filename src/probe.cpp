@@ -9,13 +9,32 @@
 
 namespace plumetrace {
 
+namespace {
+
+double warmup_of(const ProbeOptions& options, const Scenario& scenario) {
+  return std::isnan(options.warmup) ? scenario.sim.warmup : options.warmup;
+}
+
+}  // namespace
+
+void check_probe_options(const ProbeOptions& options, const Scenario& scenario) {
+  const double dt = scenario.sim.dt;
+  if ((warmup_of(options, scenario) + options.duration) / dt > kMaxSteps) {
+    throw ConfigError("--warmup, --duration: must be at most 1e9 steps of sim.dt together");
+  }
+  if (std::lround(options.duration / dt) < std::max(1L, std::lround(options.interval / dt))) {
+    throw ConfigError("--duration: must be at least --interval, or no sample is taken");
+  }
+}
+
 std::vector<ProbeResult> probe_plume(const Scenario& scenario, const std::vector<Vec3>& points,
                                      const ProbeOptions& options) {
   const double dt = scenario.sim.dt;
   const auto wind = make_wind_field(scenario.wind);
   Plume plume(scenario.plume, scenario.source, dt, scenario.arena.x_max,
               derive_seed(options.seed, 0, Stream::kPlume));
-  const long warmup_steps = std::lround(options.warmup / dt);
+  check_probe_options(options, scenario);
+  const long warmup_steps = std::lround(warmup_of(options, scenario) / dt);
   const long steps = std::lround(options.duration / dt);
   const long every = std::max(1L, std::lround(options.interval / dt));
 

@@ -91,6 +91,9 @@ const Field* find(const std::vector<Field>& fields, std::string_view key) {
 
 void check_number(const std::string& key, const NumberField& f, double file_value) {
   const double v = file_value * f.scale;
+  if (std::isinf(v) && !f.allow_infinite) {
+    throw ConfigError(key + ": must be a finite number (got " + format_number(file_value) + ")");
+  }
   const bool ok = !std::isnan(v) && (f.min_open ? v > f.min : v >= f.min) &&
                   (f.max_open ? v < f.max : v <= f.max);
   if (!ok) {
@@ -203,7 +206,7 @@ std::vector<Field> scenario_fields(Scenario& s) {
        IntegerField{&s.plume.capacity, 1, 100000000}},
       {"plume.kernel", "concentration kernel", choice(s.plume.kernel, {"gaussian", "printed"})},
       {"plume.cutoff", "filaments farther than this contribute nothing (m, may be inf)",
-       positive(s.plume.cutoff)},
+       NumberField{&s.plume.cutoff, 0.0, INFINITY, true, false, 1.0, true}},
       {"odor.threshold", "concentration at which odor is perceived", positive(s.odor.threshold)},
       {"odor.height", "odor and wind sensor height (m)", any(s.odor.height)},
       {"wind_sensor.sigma_a", "noise std on each wind component (m/s)",
@@ -215,12 +218,11 @@ std::vector<Field> scenario_fields(Scenario& s) {
       {"robot.start_x", "start position x (m)", any(s.robot.start.x)},
       {"robot.start_y", "start position y (m)", any(s.robot.start.y)},
       {"robot.start_heading_deg", "start heading (deg, counter-clockwise from +x)",
-       NumberField{&s.robot.start.heading, -INFINITY, INFINITY, false, false, deg}},
+       NumberField{&s.robot.start.heading, -kPi - 1e-12, kPi + 1e-12, false, false, deg}},
       {"supervisor.success_radius", "success once this close to the source centre (m)",
        positive(s.supervisor.success_radius)},
       {"supervisor.timeout", "run time limit after release (s)", positive(s.supervisor.timeout)},
-      {"controller.algorithm", "algorithm driving the robot",
-       algorithm_choice(c.algorithm)},
+      {"controller.algorithm", "algorithm driving the robot", algorithm_choice(c.algorithm)},
       {"casting.beta_deg", "upwind leg angle to the measured upwind direction (deg)",
        NumberField{&c.casting.beta, 0.0, 90.0 * deg, false, true, deg}},
       {"casting.d_lost", "path length without odor before the plume is lost (m)",
@@ -267,6 +269,14 @@ void validate(const Scenario& scenario) {
   for (const auto& f : scenario_fields(copy)) {
     if (const auto* num = std::get_if<NumberField>(&f.kind)) {
       check_number(f.key, *num, unscale(*num->value, num->scale));
+    } else if (const auto* in = std::get_if<IntegerField>(&f.kind)) {
+      assign(f, static_cast<std::int64_t>(*in->value), false);
+    } else {
+      const auto& ch = std::get<ChoiceField>(f.kind);
+      const int i = ch.get();
+      if (i < 0 || i >= static_cast<int>(ch.names.size())) {
+        throw ConfigError(f.key + ": must be " + choices_text(ch));
+      }
     }
   }
   // relations between keys
@@ -287,6 +297,12 @@ void validate(const Scenario& scenario) {
   }
   if (scenario.sim.dt > scenario.supervisor.timeout) {
     throw ConfigError("sim.dt: must not exceed supervisor.timeout");
+  }
+  if (scenario.sim.warmup / scenario.sim.dt > kMaxSteps) {
+    throw ConfigError("sim.warmup: must be at most 1e9 steps of sim.dt");
+  }
+  if (scenario.supervisor.timeout / scenario.sim.dt > kMaxSteps) {
+    throw ConfigError("supervisor.timeout: must be at most 1e9 steps of sim.dt");
   }
 }
 

@@ -51,7 +51,9 @@ World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
       robot_{scenario.robot.start, 0.0},
       wind_rng_(derive_seed(seed, trial, Stream::kWindSensor)),
       wind_sensor_(scenario_.wind_sensor, *wind_, robot_.pose, scenario_.odor.height, wind_rng_),
-      controller_(std::move(controller)) {}
+      controller_(std::move(controller)) {
+  warm_up();
+}
 
 void World::warm_up() {
   const auto steps =
@@ -77,12 +79,15 @@ void World::step() {
   concentration_ = sense_concentration(scenario_.odor, plume_, robot_.pose);
   odor_ = perceives_odor(scenario_.odor, concentration_);
   if (odor_) ++odor_steps_;
-  const Observation obs{time(), odor_, robot_.pose, robot_.odometer};
+  // why: odometry starts at the release pose, so a controller cannot read the arena's frame
+  const Pose& start = scenario_.robot.start;
+  const Observation obs{time(), odor_, relative_pose(start, robot_.pose), robot_.odometer};
   wind_sensor_.clear();
   wind_sensor_.set_time(plume_time());
 
   // decide
-  const Command command = controller_->step(obs, wind_sensor_);
+  Command command = controller_->step(obs, wind_sensor_);
+  command.heading = wrap_angle(command.heading + start.heading);
   if (command.give_up) {
     outcome_ = Outcome::kGaveUp;
     return;
@@ -115,7 +120,6 @@ RunResult World::result() const {
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
                    const StepObserver& observer) {
   World world(scenario, seed, trial);
-  world.warm_up();
   if (observer) observer(world);
   while (!world.done()) {
     world.step();

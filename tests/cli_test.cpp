@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "support/temp_path.hpp"
+
 namespace plumetrace {
 namespace {
 
@@ -32,7 +34,7 @@ std::string read_file(const std::string& path) {
 
 // runs the command with `args`, capturing stdout, stderr and the exit code
 Output cli(const std::string& args) {
-  const std::string err_path = ::testing::TempDir() + "cli_stderr.txt";
+  const std::string err_path = testing::temp_path("stderr", ".txt");
   const std::string command = kCli + " " + args + " 2>" + err_path;
   Output o;
   std::FILE* pipe = popen(command.c_str(), "r");
@@ -50,8 +52,8 @@ TEST(Cli, RunJsonHasEveryDocumentedKey) {
   const Output o = cli("run --algorithm surge-spiral --seed 3 --trial 2 --json");
   ASSERT_EQ(o.code, 0) << o.err;
   const json j = json::parse(o.out);
-  for (const char* key : {"outcome", "success", "time_s", "d_t", "d_u", "overhead", "losses",
-                          "seed", "trial"}) {
+  for (const char* key :
+       {"outcome", "success", "time_s", "d_t", "d_u", "overhead", "losses", "seed", "trial"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["seed"], 3);
@@ -86,7 +88,7 @@ TEST(Cli, ScenarioFileAndSetAreApplied) {
 }
 
 TEST(Cli, PrintedConfigRunsTheSameAsTheOptionsThatMadeIt) {
-  const std::string path = ::testing::TempDir() + "resolved_cli.toml";
+  const std::string path = testing::temp_path("resolved", ".toml");
   const Output config = cli("config --algorithm surge-cast --set surge_cast.d_cast=0.4");
   ASSERT_EQ(config.code, 0) << config.err;
   std::ofstream(path) << config.out;
@@ -112,6 +114,14 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"config --set supervisor.success_radius=0", "supervisor.success_radius"},
       {"run --trace out.txt", "out.txt"},
       {"run --no-such-flag", "no-such-flag"},
+      {"config /", "cannot read scenario file '/'"},
+      {"run --seed -1", "--seed"},
+      {"run --trial 1.5", "--trial"},
+      {"run --set wind.vx=inf", "wind.vx: must be a finite number"},
+      {"run --set robot.start_heading_deg=200", "robot.start_heading_deg"},
+      {"run --set sim.dt=1e-300", "at most 1e9 steps"},
+      {"probe --points 1,0,nan", "--points"},
+      {"probe --points 1,0,0 --duration 0.1 --interval 1", "--duration"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);
@@ -121,8 +131,24 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
   }
 }
 
+TEST(Cli, TomlValuesOfTheWrongTypeNameTheKey) {
+  const std::string path = testing::temp_path("array", ".toml");
+  std::ofstream(path) << "[plume]\nsigma_p = [0.1]\n";
+  const Output o = cli("run " + path);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("plume.sigma_p: must be a number >= 0 (got '<array>')"), std::string::npos)
+      << o.err;
+}
+
+TEST(Cli, UnwritableTraceFailsBeforeTheRunWithCodeThree) {
+  const Output o = cli("run --trace /nonexistent-dir/trace.csv --json");
+  EXPECT_EQ(o.code, 3);
+  EXPECT_EQ(o.out, "");
+  EXPECT_NE(o.err.find("/nonexistent-dir/trace.csv"), std::string::npos) << o.err;
+}
+
 TEST(Cli, CsvTraceHoldsStepsAndFilamentSnapshots) {
-  const std::string path = ::testing::TempDir() + "trace_test.csv";
+  const std::string path = testing::temp_path("trace", ".csv");
   const Output o = cli("run --algorithm surge-cast --set supervisor.timeout=5 --trace " + path +
                        " --snapshot-interval 1 --json");
   ASSERT_EQ(o.code, 0) << o.err;
@@ -136,7 +162,7 @@ TEST(Cli, CsvTraceHoldsStepsAndFilamentSnapshots) {
   // one row at release plus one per step
   EXPECT_EQ(rows, result["steps"].get<int>() + 1);
 
-  const std::string filaments = read_file(::testing::TempDir() + "trace_test.filaments.csv");
+  const std::string filaments = read_file(path.substr(0, path.size() - 4) + ".filaments.csv");
   EXPECT_EQ(filaments.rfind("time,x,y,z,w\n", 0), 0u);
   // snapshots at 0..5 s, 1600 filaments each after the 20 s warm-up
   const auto lines = std::count(filaments.begin(), filaments.end(), '\n');
@@ -144,7 +170,7 @@ TEST(Cli, CsvTraceHoldsStepsAndFilamentSnapshots) {
 }
 
 TEST(Cli, JsonTraceMatchesTheRunResult) {
-  const std::string path = ::testing::TempDir() + "trace_test.json";
+  const std::string path = testing::temp_path("trace", ".json");
   const Output o = cli("run --algorithm casting --set supervisor.timeout=3 --trace " + path +
                        " --snapshot-interval 0.5 --json");
   ASSERT_EQ(o.code, 0) << o.err;

@@ -94,7 +94,6 @@ TEST(WorldRun, SucceedsWhenStartedJustDownwindOfTheSource) {
       {parse_override("controller.algorithm=surge-spiral"), parse_override("robot.start_x=1.5")});
   for (std::uint64_t trial = 0; trial < 3; ++trial) {
     World world(s, kSeed, trial);
-    world.warm_up();
     Pose before = world.robot().pose;
     while (!world.done()) {
       before = world.robot().pose;
@@ -129,7 +128,6 @@ TEST(WorldRun, EndsAtTheWallWhenCastingStartsNextToIt) {
   validate(s);
   for (std::uint64_t trial = 0; trial < 4; ++trial) {
     World world(s, kSeed, trial);
-    world.warm_up();
     while (!world.done()) world.step();
     EXPECT_EQ(world.outcome(), Outcome::kWall) << "trial " << trial;
     EXPECT_LT(s.arena.y_max - world.robot().pose.y, s.robot.radius);
@@ -173,7 +171,6 @@ TEST(RunMetrics, AgreeWithTheRobotsPathAndTheStepCount) {
   for (Algorithm algorithm : all_algorithms()) {
     const Scenario s = make_scenario(algorithm, 150.0);
     World world(s, kSeed, 2);
-    world.warm_up();
     double chords = 0.0;
     std::int64_t odor_steps = 0, samples = 0;
     Pose last = world.robot().pose;
@@ -309,9 +306,6 @@ TEST(Reproducibility, TrialMeetsTheSamePlumeWhateverTheController) {
   cast.controller.surge_cast.d_lost = 0.3;
   for (std::uint64_t trial : {0u, 7u}) {
     World a(casting, kSeed, trial), b(spiral, kSeed, trial), c(cast, kSeed, trial);
-    a.warm_up();
-    b.warm_up();
-    c.warm_up();
     ASSERT_GT(a.plume().size(), 1000u);
     expect_same_plume(a.plume(), b.plume(), "after warm-up");
     expect_same_plume(a.plume(), c.plume(), "after warm-up");
@@ -328,8 +322,6 @@ TEST(Reproducibility, TrialMeetsTheSamePlumeWhateverTheController) {
   }
   // a different trial meets a different plume
   World t0(casting, kSeed, 0), t1(casting, kSeed, 1);
-  t0.warm_up();
-  t1.warm_up();
   EXPECT_NE(bits(t0.plume().x()[0]), bits(t1.plume().x()[0]));
 }
 

@@ -40,16 +40,22 @@ inline double wrap_angle(double a) {
   return a - kPi;
 }
 
-/// Squared Euclidean distance between two points (m^2).
-inline double distance_squared(const Vec3& a, const Vec3& b) {
-  const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-  return dx * dx + dy * dy + dz * dz;
-}
-
 /// Rotates a planar vector by angle a (rad).
 inline Vec2 rotate(const Vec2& v, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+/// Pose p expressed in the frame of `origin` (origin at (0, 0) with heading 0).
+inline Pose relative_pose(const Pose& origin, const Pose& p) {
+  const Vec2 d = rotate({p.x - origin.x, p.y - origin.y}, -origin.heading);
+  return {d.x, d.y, wrap_angle(p.heading - origin.heading)};
+}
+
+/// Squared Euclidean distance between two points (m^2).
+inline double distance_squared(const Vec3& a, const Vec3& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+  return dx * dx + dy * dy + dz * dz;
 }
 
 }  // namespace plumetrace

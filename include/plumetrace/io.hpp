@@ -46,6 +46,10 @@ std::string result_to_json(const RunResult& result, const RunInfo& info);
 /// Probe results as {"points": [...]}.
 std::string probe_to_json(const std::vector<ProbeResult>& results);
 
+/// Checks a trace path before a run: a .csv or .json name (ConfigError otherwise) whose files
+/// can be created (IoError naming the file otherwise).
+void check_trace_path(const std::string& path);
+
 /// Writes a trace: `.json` as one object; `.csv` as the step table, with the filament
 /// snapshots beside it in `<stem>.filaments.csv`. Throws IoError naming the file.
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,

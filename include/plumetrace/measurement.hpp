@@ -10,7 +10,8 @@ struct Observation {
   double time = 0.0;
   /// Binary odor: concentration at the robot reached the threshold.
   bool odor = false;
-  /// Pose from the robot's own odometry (m, rad).
+  /// Pose from the robot's own odometry (m, rad), relative to the release pose: the robot starts
+  /// at (0, 0) with heading 0.
   Pose odometry;
   /// Path length travelled since release, from odometry (m).
   double odometer = 0.0;
@@ -41,7 +42,7 @@ enum class Motion {
 struct Command {
   /// Kind of motion.
   Motion motion = Motion::kStop;
-  /// Target heading (rad, odometry frame) for kTurnTo and kGo.
+  /// Target heading (rad, in the odometry frame) for kTurnTo and kGo.
   double heading = 0.0;
   /// Signed curvature (1/m, positive turns counter-clockwise) for kCurve.
   double curvature = 0.0;

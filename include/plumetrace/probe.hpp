@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -10,8 +11,8 @@ namespace plumetrace {
 
 /// How to sample a plume without a robot.
 struct ProbeOptions {
-  /// Plume-only time before sampling starts (s).
-  double warmup = 20.0;
+  /// Plume-only time before sampling starts (s); NaN: the scenario's sim.warmup.
+  double warmup = NAN;
   /// Time over which samples are taken (s).
   double duration = 60.0;
   /// Time between samples (s), rounded to whole steps (at least one).
@@ -31,6 +32,10 @@ struct ProbeResult {
   /// Number of sampled instants.
   long samples = 0;
 };
+
+/// Checks that the options take at least one sample and at most 1e9 steps; throws ConfigError
+/// naming the option.
+void check_probe_options(const ProbeOptions& options, const Scenario& scenario);
 
 /// Runs the scenario's plume alone and samples the concentration at each point.
 std::vector<ProbeResult> probe_plume(const Scenario& scenario, const std::vector<Vec3>& points,

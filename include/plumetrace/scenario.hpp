@@ -46,17 +46,20 @@ struct SupervisorParams {
 
 /// Everything one run depends on besides (seed, trial); defaults are the paper's setup.
 struct Scenario {
-  SimParams sim;
-  ArenaParams arena;
-  SourceParams source;
-  WindParams wind;
-  PlumeParams plume;
-  OdorSensorParams odor;
-  WindSensorParams wind_sensor;
-  RobotParams robot;
-  SupervisorParams supervisor;
-  ControllerParams controller;
+  SimParams sim;                 ///< time stepping
+  ArenaParams arena;             ///< walls
+  SourceParams source;           ///< odor source
+  WindParams wind;               ///< wind field
+  PlumeParams plume;             ///< filament plume
+  OdorSensorParams odor;         ///< odor sensor
+  WindSensorParams wind_sensor;  ///< wind sensor
+  RobotParams robot;             ///< the robot and its start
+  SupervisorParams supervisor;   ///< when a run ends
+  ControllerParams controller;   ///< algorithm and its parameters
 };
+
+/// The most steps a warm-up or a run may take (keeps bad input from running for ever).
+inline constexpr double kMaxSteps = 1e9;
 
 /// A bad configuration: names the dotted key (or file) and what is allowed.
 class ConfigError : public std::runtime_error {
@@ -69,26 +72,27 @@ using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
 
 /// A real-valued key: file value times `scale` gives the SI value.
 struct NumberField {
-  double* value;
-  double min = -INFINITY;
-  double max = INFINITY;
-  bool min_open = false;  ///< the bound itself is excluded
-  bool max_open = false;
-  double scale = 1.0;
+  double* value;                ///< where the SI value lives
+  double min = -INFINITY;       ///< lower bound (SI)
+  double max = INFINITY;        ///< upper bound (SI)
+  bool min_open = false;        ///< the lower bound itself is excluded
+  bool max_open = false;        ///< the upper bound itself is excluded
+  double scale = 1.0;           ///< SI value = file value * scale
+  bool allow_infinite = false;  ///< "inf" is a valid value
 };
 
 /// An integer key.
 struct IntegerField {
-  int* value;
-  std::int64_t min;
-  std::int64_t max;
+  int* value;        ///< where the value lives
+  std::int64_t min;  ///< smallest allowed
+  std::int64_t max;  ///< largest allowed
 };
 
 /// A key with a fixed set of names.
 struct ChoiceField {
-  std::vector<std::string> names;
-  std::function<int()> get;
-  std::function<void(int)> set;
+  std::vector<std::string> names;  ///< allowed names, indexed by choice
+  std::function<int()> get;        ///< index of the current choice
+  std::function<void(int)> set;    ///< selects a choice by index
 };
 
 /// One config key bound to its place in a Scenario.
@@ -97,6 +101,7 @@ struct Field {
   std::string key;
   /// One line: meaning and unit.
   std::string help;
+  /// Type, range and location of the value.
   std::variant<NumberField, IntegerField, ChoiceField> kind;
 };
 

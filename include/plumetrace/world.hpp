@@ -50,16 +50,15 @@ Outcome supervise(const Scenario& scenario, const RobotState& robot, double t);
 /// One run's whole state. A fresh World per run; it is neither copied nor moved.
 class World {
  public:
-  /// A run of the scenario's algorithm; random streams from (seed, trial).
+  /// A run of the scenario's algorithm, warmed up and ready for its first step; random streams
+  /// from (seed, trial).
   World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
-  /// A run driven by a given controller (the extension point for custom algorithms).
+  /// A run driven by a given controller (the extension point for custom algorithms), warmed up.
   World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
         std::unique_ptr<Controller> controller);
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
-  /// Runs the plume alone for the warm-up time; call once before the first step.
-  void warm_up();
   /// One step: environment, sense, decide, move, check (SPEC section 2).
   void step();
   /// True once the run has ended.
@@ -89,6 +88,7 @@ class World {
   Outcome outcome() const { return outcome_; }
 
  private:
+  void warm_up();
   double plume_time() const { return warmup_time_ + time(); }
 
   Scenario scenario_;

@@ -7,24 +7,25 @@ namespace plumetrace {
 
 /// A 3-D vector (m or m/s, world frame unless named otherwise).
 struct Vec3 {
-  double x = 0.0;
-  double y = 0.0;
-  double z = 0.0;
+  double x = 0.0;  ///< downwind
+  double y = 0.0;  ///< lateral
+  double z = 0.0;  ///< up
 };
 
 /// A 2-D vector (m or m/s).
 struct Vec2 {
-  double x = 0.0;
-  double y = 0.0;
+  double x = 0.0;  ///< first component
+  double y = 0.0;  ///< second component
 };
 
 /// A planar pose: position (m) and heading (rad, counter-clockwise from +x).
 struct Pose {
-  double x = 0.0;
-  double y = 0.0;
-  double heading = 0.0;
+  double x = 0.0;        ///< position x (m)
+  double y = 0.0;        ///< position y (m)
+  double heading = 0.0;  ///< heading (rad)
 };
 
+/// pi.
 inline constexpr double kPi = std::numbers::pi;
 
 /// Converts degrees to radians.

@@ -35,9 +35,9 @@ std::string scenario_to_json(const Scenario& scenario);
 
 /// Identifies a run: what the trace and the JSON output carry besides the result.
 struct RunInfo {
-  std::string algorithm;
-  std::uint64_t seed = 0;
-  std::uint64_t trial = 0;
+  std::string algorithm;    ///< algorithm name
+  std::uint64_t seed = 0;   ///< master seed
+  std::uint64_t trial = 0;  ///< trial index
 };
 
 /// One run's result as a JSON object (keys as documented for `plumetrace run --json`).

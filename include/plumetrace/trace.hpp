@@ -30,15 +30,18 @@ struct TraceStep {
 
 /// Positions and widths of every filament at one instant.
 struct FilamentSnapshot {
-  /// Time since release (s); negative never (the first snapshot is at release).
+  /// Time since release (s); the first snapshot is at release.
   double time = 0.0;
-  std::vector<double> x, y, z, w;
+  std::vector<double> x;  ///< positions x (m)
+  std::vector<double> y;  ///< positions y (m)
+  std::vector<double> z;  ///< positions z (m)
+  std::vector<double> w;  ///< widths (m)
 };
 
 /// Everything recorded about one run, for plots and viewers.
 struct Trace {
-  std::vector<TraceStep> steps;
-  std::vector<FilamentSnapshot> snapshots;
+  std::vector<TraceStep> steps;             ///< one row at release, then one per step
+  std::vector<FilamentSnapshot> snapshots;  ///< filaments at the snapshot interval
 };
 
 /// Records a World into a Trace; use as the StepObserver of run_once.

@@ -11,6 +11,7 @@ enum class WindModel { kConstant };
 
 /// Parameters of the wind field.
 struct WindParams {
+  /// Which field.
   WindModel model = WindModel::kConstant;
   /// Constant wind velocity (m/s); paper eq. 1.
   Vec3 velocity{1.0, 0.0, 0.0};

@@ -22,6 +22,7 @@ std::string_view outcome_name(Outcome outcome);
 
 /// The metrics of one run (SPEC section 6).
 struct RunResult {
+  /// How the run ended.
   Outcome outcome = Outcome::kRunning;
   /// Simulated time from release to the end (s).
   double time = 0.0;
@@ -39,8 +40,9 @@ struct RunResult {
   std::int64_t steps = 0;
   /// Wind samples the controller took.
   std::int64_t wind_samples = 0;
-  /// Master seed and trial index that replay the run.
+  /// Master seed that, with the trial index, replays the run.
   std::uint64_t seed = 0;
+  /// Trial index.
   std::uint64_t trial = 0;
 };
 

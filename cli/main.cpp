@@ -3,14 +3,17 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "campaigns.hpp"
 #include "plumetrace/io.hpp"
 #include "plumetrace/probe.hpp"
 #include "plumetrace/scenario.hpp"
+#include "plumetrace/store.hpp"
 #include "plumetrace/trace.hpp"
 #include "plumetrace/world.hpp"
 
@@ -18,8 +21,8 @@ namespace pt = plumetrace;
 
 namespace {
 
-constexpr int kBadInput = 2;
-constexpr int kIoFailure = 3;
+using plumetrace::cli::kBadInput;
+using plumetrace::cli::kIoFailure;
 
 // options every scenario-reading command shares
 struct ScenarioOptions {
@@ -144,6 +147,18 @@ int main(int argc, char** argv) {
   bool config_json = false;
   config->add_flag("--json", config_json, "print JSON instead of TOML");
 
+  pt::cli::SweepCommand sweep_cmd;
+  auto* sweep = pt::cli::add_sweep_command(app, sweep_cmd);
+  pt::cli::ExportCommand export_cmd;
+  auto* export_sub = pt::cli::add_export_command(app, export_cmd);
+  pt::cli::ReproduceCommand reproduce_cmd;
+  auto* reproduce = pt::cli::add_reproduce_command(app, reproduce_cmd);
+  pt::cli::SensitivityCommand sensitivity_cmd;
+  auto* sensitivity = pt::cli::add_sensitivity_command(app, sensitivity_cmd);
+  for (int i = 0; i < argc; ++i) {
+    reproduce_cmd.command_line += (i ? " " : "") + std::string(i ? argv[i] : "plumetrace");
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -199,9 +214,19 @@ int main(int argc, char** argv) {
       std::cout << (config_json ? pt::scenario_to_json(scenario) + "\n"
                                 : pt::scenario_to_toml(scenario));
     }
+    if (*sweep) return pt::cli::run_sweep_command(sweep_cmd);
+    if (*export_sub) return pt::cli::run_export_command(export_cmd);
+    if (*reproduce) return pt::cli::run_reproduce_command(reproduce_cmd);
+    if (*sensitivity) return pt::cli::run_sensitivity_command(sensitivity_cmd);
   } catch (const pt::ConfigError& e) {
     std::cerr << "plumetrace: error: " << e.what() << "\n";
     return kBadInput;
+  } catch (const pt::StoreError& e) {
+    std::cerr << "plumetrace: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "plumetrace: error: " << e.what() << "\n";
+    return kIoFailure;
   } catch (const pt::IoError& e) {
     std::cerr << "plumetrace: error: " << e.what() << "\n";
     return kIoFailure;

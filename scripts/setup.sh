@@ -5,8 +5,9 @@ set -euo pipefail
 
 packages=(
   g++ cmake make pkg-config
-  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev
+  libgtest-dev libbenchmark-dev
+  python3 python3-matplotlib python3-numpy python3-pytest
 )
 
 missing=()

@@ -2,19 +2,28 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
+#include "json_util.hpp"
+#include "plumetrace/campaign.hpp"
 #include "plumetrace/version.hpp"
 
 namespace plumetrace {
 
 namespace {
 
+using detail::number_or_null;
+using detail::result_json;
+using detail::stats_json;
+using detail::value_to_json;
 using nlohmann::json;
 
 void flatten(const toml::table& table, const std::string& prefix, const std::string& path,
@@ -40,11 +49,23 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
   }
 }
 
-json value_to_json(const ConfigValue& v) {
-  return std::visit([](const auto& x) { return json(x); }, v);
+toml::table parse_toml_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  std::ifstream in(path);
+  if (!std::filesystem::is_regular_file(path, ec) || !in) {
+    throw ConfigError("cannot read " + what + " '" + path + "'");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  try {
+    return toml::parse(buffer.str(), path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column
+        << ": invalid TOML: " << e.description();
+    throw ConfigError(msg.str());
+  }
 }
-
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 std::ofstream open_for_writing(const std::string& path) {
   std::ofstream out(path);
@@ -63,45 +84,12 @@ bool ends_with(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-json result_json(const RunResult& r, const RunInfo& info) {
-  return json{{"algorithm", info.algorithm},
-              {"outcome", std::string(outcome_name(r.outcome))},
-              {"success", r.outcome == Outcome::kSuccess},
-              {"time_s", r.time},
-              {"d_t", r.d_t},
-              {"d_u", r.d_u},
-              {"overhead", number_or_null(r.overhead)},
-              {"losses", r.losses},
-              {"odor_fraction", r.odor_fraction},
-              {"steps", r.steps},
-              {"wind_samples", r.wind_samples},
-              {"seed", info.seed},
-              {"trial", info.trial},
-              {"version", std::string(version())}};
-}
-
 }  // namespace
 
 std::string_view version() { return kVersion; }
 
 std::vector<Setting> read_scenario_file(const std::string& path) {
-  std::error_code ec;
-  std::ifstream in(path);
-  if (!std::filesystem::is_regular_file(path, ec) || !in) {
-    throw ConfigError("cannot read scenario file '" + path + "'");
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw ConfigError("cannot read scenario file '" + path + "'");
-  toml::table table;
-  try {
-    table = toml::parse(buffer.str(), path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column
-        << ": invalid TOML: " << e.description();
-    throw ConfigError(msg.str());
-  }
+  const toml::table table = parse_toml_file(path, "scenario file");
   std::vector<Setting> settings;
   flatten(table, "", path, settings);
   return settings;
@@ -246,6 +234,252 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
     }
   }
   check_written(snaps, snap_path);
+}
+
+namespace {
+
+std::optional<ConfigValue> toml_scalar(const toml::node& node) {
+  if (const auto* i = node.as_integer()) return static_cast<std::int64_t>(i->get());
+  if (const auto* d = node.as_floating_point()) return d->get();
+  if (const auto* s = node.as_string()) return s->get();
+  if (const auto* b = node.as_boolean()) return b->get();
+  return std::nullopt;
+}
+
+}  // namespace
+
+SweepDef read_sweep_file(const std::string& path) {
+  const toml::table table = parse_toml_file(path, "sweep file");
+  SweepDef def;
+  def.file = path;
+  const auto fail = [&](const std::string& msg) { throw ConfigError(path + ": " + msg); };
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const auto& [k, node] : table) {
+    const std::string key(k.str());
+    if (key == "name" && node.is_string()) {
+      def.name = node.as_string()->get();
+    } else if (key == "title" && node.is_string()) {
+      def.title = node.as_string()->get();
+    } else if (key == "scenario" && node.is_string()) {
+      const std::filesystem::path p(node.as_string()->get());
+      def.scenario_path = (p.is_absolute() ? p : folder / p).lexically_normal().string();
+    } else if (key == "runs" && node.is_integer()) {
+      const auto runs = node.as_integer()->get();
+      if (runs < 1 || runs > 100000000) fail("runs: must be an integer >= 1");
+      def.runs = static_cast<int>(runs);
+    } else if (key == "seed" && node.is_integer()) {
+      const auto seed = node.as_integer()->get();
+      if (seed < 0) fail("seed: must be an integer >= 0");
+      def.seed = static_cast<std::uint64_t>(seed);
+    } else if (key == "set" && node.is_table()) {
+      flatten(*node.as_table(), "", path + ": [set]", def.settings);
+    } else if (key == "axis" && node.is_array_of_tables()) {
+      for (const auto& item : *node.as_array()) {
+        Axis axis;
+        for (const auto& [ak, anode] : *item.as_table()) {
+          const std::string akey(ak.str());
+          if (akey == "key" && anode.is_string()) {
+            axis.key = anode.as_string()->get();
+          } else if (akey == "label" && anode.is_string()) {
+            axis.label = anode.as_string()->get();
+          } else if (akey == "fixed" && toml_scalar(anode)) {
+            axis.fixed = toml_scalar(anode);
+          } else if (akey == "values" && anode.is_array()) {
+            for (const auto& v : *anode.as_array()) {
+              const auto value = toml_scalar(v);
+              if (!value) fail("axis values must be numbers or strings");
+              axis.values.push_back(*value);
+            }
+          } else {
+            fail("[[axis]]: unknown or mistyped key '" + akey +
+                 "' (keys: key = \"dotted.key\", values = [...], label, fixed)");
+          }
+        }
+        if (axis.key.empty()) fail("[[axis]]: missing key = \"dotted.config.key\"");
+        if (axis.values.empty()) fail("axis " + axis.key + ": values must not be empty");
+        for (const auto& other : def.axes) {
+          if (other.key == axis.key) fail("axis " + axis.key + " is given twice");
+        }
+        if (axis.label.empty()) axis.label = axis.key;
+        def.axes.push_back(std::move(axis));
+      }
+    } else {
+      fail("unknown or mistyped key '" + key +
+           "' (keys: name, title, scenario, runs, seed, [set], [[axis]])");
+    }
+  }
+  if (def.name.empty()) fail("missing name = \"...\"");
+  if (def.axes.empty()) fail("no [[axis]]: a sweep varies at least one key");
+  // unknown axis keys and values of the wrong type are found here, naming the axis
+  Scenario probe;
+  for (const auto& axis : def.axes) {
+    for (const auto& v : axis.values) {
+      try {
+        set_field(probe, axis.key, v);
+      } catch (const ConfigError& e) {
+        fail("axis " + axis.key + ": " + e.what());
+      }
+    }
+  }
+  return def;
+}
+
+std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps) {
+  json all = json::array();
+  for (const auto& s : sweeps) {
+    json axes = json::array();
+    for (const auto& a : s.def.axes) {
+      json values = json::array();
+      for (const auto& v : a.values) values.push_back(value_to_json(v));
+      axes.push_back({{"key", a.key}, {"values", values}});
+    }
+    json points = json::array();
+    for (const auto& p : s.points) points.push_back(p.config_hash);
+    all.push_back({{"name", s.def.name},
+                   {"seed", std::to_string(s.def.seed)},
+                   {"axes", axes},
+                   {"point_configs", points}});
+  }
+  return json{{"sweeps", all}}.dump();
+}
+
+namespace {
+
+std::vector<std::string> axis_keys(const std::vector<ExpandedSweep>& sweeps) {
+  std::vector<std::string> keys;
+  for (const auto& s : sweeps) {
+    for (const auto& a : s.def.axes) {
+      if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) keys.push_back(a.key);
+    }
+  }
+  return keys;
+}
+
+const ExpandedSweep* find_sweep(const std::vector<ExpandedSweep>& sweeps, const std::string& name) {
+  for (const auto& s : sweeps) {
+    if (s.def.name == name) return &s;
+  }
+  return nullptr;
+}
+
+// the axis columns of one point: its value under each key, empty where the sweep lacks the key
+std::string axis_cells(const ExpandedSweep& sweep, int point,
+                       const std::vector<std::string>& keys) {
+  std::string cells;
+  for (const auto& key : keys) {
+    cells += ',';
+    for (std::size_t a = 0; a < sweep.def.axes.size(); ++a) {
+      if (sweep.def.axes[a].key != key) continue;
+      const ConfigValue& v = sweep.points[static_cast<std::size_t>(point)].values[a];
+      cells += std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v);
+    }
+  }
+  return cells;
+}
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                    const std::vector<RunRow>& rows) {
+  const auto keys = axis_keys(sweeps);
+  auto out = open_for_writing(path);
+  out << "sweep,point";
+  for (const auto& k : keys) out << ',' << k;
+  out << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
+         "steps,wind_samples\n";
+  for (const auto& r : rows) {
+    const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
+    if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
+    const RunResult& m = r.result;
+    out << r.sweep << ',' << r.point << axis_cells(*sweep, r.point, keys) << ',' << r.trial << ','
+        << m.seed << ',' << r.config_hash << ',' << outcome_name(m.outcome) << ','
+        << (m.outcome == Outcome::kSuccess ? 1 : 0) << ',' << csv_number(m.time) << ','
+        << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ',' << csv_number(m.overhead) << ','
+        << m.losses << ',' << csv_number(m.odor_fraction) << ',' << m.steps << ',' << m.wind_samples
+        << '\n';
+  }
+  check_written(out, path);
+}
+
+void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                       const std::vector<RunRow>& rows, int runs_override) {
+  const auto keys = axis_keys(sweeps);
+  auto out = open_for_writing(path);
+  out << "sweep,point";
+  for (const auto& k : keys) out << ',' << k;
+  out << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
+         "overhead_mean,overhead_lo,overhead_hi,overhead_median,overhead_q1,overhead_q3,"
+         "mean_time,mean_losses\n";
+  for (const auto& sweep : sweeps) {
+    const int runs = runs_per_point(sweep, runs_override);
+    for (const auto& p : sweep.points) {
+      const auto results = point_runs(rows, sweep.def.name, p.index, runs);
+      const PointStats st = summarize(results);
+      out << sweep.def.name << ',' << p.index << axis_cells(sweep, p.index, keys) << ',' << st.runs
+          << ',' << st.successes << ',' << st.walls << ',' << st.timeouts << ',' << st.gave_up
+          << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo) << ','
+          << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
+          << csv_number(st.overhead.mean) << ',' << csv_number(st.overhead.lo) << ','
+          << csv_number(st.overhead.hi) << ',' << csv_number(st.overhead_quartiles.median) << ','
+          << csv_number(st.overhead_quartiles.q1) << ',' << csv_number(st.overhead_quartiles.q3)
+          << ',' << csv_number(st.mean_time) << ',' << csv_number(st.mean_losses) << '\n';
+    }
+  }
+  check_written(out, path);
+}
+
+void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                        const std::vector<RunRow>& rows, int runs_override) {
+  json doc_sweeps = json::array();
+  for (const auto& sweep : sweeps) {
+    const int runs = runs_per_point(sweep, runs_override);
+    json axes = json::array();
+    for (const auto& a : sweep.def.axes) {
+      json values = json::array();
+      for (const auto& v : a.values) values.push_back(value_to_json(v));
+      axes.push_back({{"key", a.key},
+                      {"label", a.label},
+                      {"values", values},
+                      {"fixed", a.fixed ? value_to_json(*a.fixed) : json(nullptr)}});
+    }
+    json points = json::array();
+    for (const auto& p : sweep.points) {
+      const auto results = point_runs(rows, sweep.def.name, p.index, runs);
+      json values = json::array();
+      for (const auto& v : p.values) values.push_back(value_to_json(v));
+      json run_list = json::array();
+      for (const auto& r : results) {
+        run_list.push_back(result_json(
+            r, {std::string(algorithm_name(p.scenario.controller.algorithm)), r.seed, r.trial}));
+      }
+      points.push_back({{"index", p.index},
+                        {"values", values},
+                        {"config_hash", p.config_hash},
+                        {"stats", stats_json(summarize(results))},
+                        {"runs", run_list}});
+    }
+    doc_sweeps.push_back({{"name", sweep.def.name},
+                          {"title", sweep.def.title},
+                          {"file", sweep.def.file},
+                          {"seed", sweep.def.seed},
+                          {"runs_per_point", runs},
+                          {"axes", axes},
+                          {"points", points}});
+  }
+  auto out = open_for_writing(path);
+  out << json{{"plumetrace_results", 1},
+              {"version", std::string(version())},
+              {"sweeps", doc_sweeps}}
+             .dump(1)
+      << "\n";
+  check_written(out, path);
 }
 
 }  // namespace plumetrace

@@ -6,6 +6,8 @@
 
 #include "plumetrace/probe.hpp"
 #include "plumetrace/scenario.hpp"
+#include "plumetrace/stats.hpp"
+#include "plumetrace/sweep.hpp"
 #include "plumetrace/trace.hpp"
 #include "plumetrace/world.hpp"
 
@@ -54,5 +56,27 @@ void check_trace_path(const std::string& path);
 /// snapshots beside it in `<stem>.filaments.csv`. Throws IoError naming the file.
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
                  const RunResult& result, const RunInfo& info);
+
+/// Reads a sweep file; throws ConfigError naming the file and the problem (unknown key, empty
+/// axis, value of the wrong type, ...). The scenario path is resolved from the file's folder.
+SweepDef read_sweep_file(const std::string& path);
+
+/// The identity of a campaign (its sweeps, points and resolved configs; not the runs per point)
+/// as canonical JSON: stores refuse to mix results of different definitions.
+std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps);
+
+/// Writes one CSV row per stored run: sweep, point, one column per axis key (union over the
+/// sweeps), trial, seed, config hash and every metric. Throws IoError naming the file.
+void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                    const std::vector<RunRow>& rows);
+
+/// Writes one CSV row per sweep point with the statistics of SPEC section 7 over trials
+/// 0..runs-1. Throws IoError naming the file.
+void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                       const std::vector<RunRow>& rows, int runs_override);
+
+/// Writes the sweeps, their points with statistics, and every run as one JSON document.
+void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                        const std::vector<RunRow>& rows, int runs_override);
 
 }  // namespace plumetrace

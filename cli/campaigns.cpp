@@ -1,0 +1,315 @@
+#include "campaigns.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "plumetrace/campaign.hpp"
+#include "plumetrace/io.hpp"
+#include "plumetrace/paths.hpp"
+#include "plumetrace/report.hpp"
+#include "plumetrace/stats.hpp"
+#include "plumetrace/store.hpp"
+#include "progress.hpp"
+
+namespace plumetrace::cli {
+
+namespace {
+
+std::string interval_text(double value, double lo, double hi, int digits) {
+  if (!std::isfinite(value)) return "n/a";
+  char buf[96];
+  if (std::isfinite(lo) && std::isfinite(hi)) {
+    std::snprintf(buf, sizeof buf, "%.*f [%.*f, %.*f]", digits, value, digits, lo, digits, hi);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.*f", digits, value);
+  }
+  return buf;
+}
+
+std::string values_text(const ExpandedSweep& sweep, const SweepPoint& p) {
+  std::string out;
+  for (std::size_t a = 0; a < p.values.size(); ++a) {
+    const auto& v = p.values[a];
+    out += (a ? ", " : "") + sweep.def.axes[a].key + "=" +
+           (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v));
+  }
+  return out;
+}
+
+void print_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                   int runs_override) {
+  std::printf("%-8s %-44s %5s  %-24s %-24s\n", "sweep", "point", "runs", "success [95% CI]",
+              "overhead [95% CI]");
+  for (const auto& sweep : sweeps) {
+    const int runs = runs_per_point(sweep, runs_override);
+    for (const auto& p : sweep.points) {
+      const PointStats st = summarize(point_runs(rows, sweep.def.name, p.index, runs));
+      std::printf("%-8s %-44s %5lld  %-24s %-24s\n", sweep.def.name.c_str(),
+                  values_text(sweep, p).c_str(), static_cast<long long>(st.runs),
+                  interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2).c_str(),
+                  interval_text(st.overhead.mean, st.overhead.lo, st.overhead.hi, 3).c_str());
+    }
+  }
+}
+
+std::vector<Setting> parse_sets(const std::vector<std::string>& sets) {
+  std::vector<Setting> out;
+  for (const auto& s : sets) out.push_back(parse_override(s));
+  return out;
+}
+
+void write_exports(const std::string& out, const std::vector<ExpandedSweep>& sweeps,
+                   const std::vector<RunRow>& rows, int runs_override) {
+  write_runs_csv(out + "/runs.csv", sweeps, rows);
+  write_summary_csv(out + "/summary.csv", sweeps, rows, runs_override);
+  write_results_json(out + "/results.json", sweeps, rows, runs_override);
+}
+
+// the nine sets, in order
+const char* const kSets[] = {"A", "B", "C", "D", "E", "F", "G", "H", "I"};
+
+std::string experiments_dir(const std::string& given) {
+  return given.empty() ? std::string(kSourceDir) + "/experiments/lochmatter2008" : given;
+}
+
+std::vector<SweepDef> read_sets(const std::string& dir, bool with_sensitivity) {
+  std::vector<SweepDef> defs;
+  for (const char* name : kSets) defs.push_back(read_sweep_file(dir + "/" + name + ".toml"));
+  if (with_sensitivity) {
+    defs.push_back(read_sweep_file(dir + "/radius.toml"));
+    defs.push_back(read_sweep_file(dir + "/literal.toml"));
+  }
+  return defs;
+}
+
+bool sets_key(const SweepDef& def, const std::string& key) {
+  for (const auto& s : def.settings) {
+    if (s.key == key) return true;
+  }
+  return false;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  out.flush();
+  if (!out) throw IoError("cannot write '" + path + "'");
+}
+
+// runs the campaign with a progress bar; false when interrupted (after saying so)
+bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep>& sweeps,
+                       Store& store, int runs, int threads, bool quiet, CampaignResult& result) {
+  install_stop_handlers();
+  ProgressBar bar(label, !quiet && stderr_is_terminal());
+  CampaignOptions options;
+  options.threads = threads;
+  options.stop = &g_stop;
+  options.on_progress = [&](const Progress& p) { bar.update(p); };
+  result = run_campaign(sweeps, store, runs, options);
+  bar.finish();
+  if (!result.interrupted) return true;
+  std::fprintf(stderr,
+               "plumetrace: interrupted: %lld of %lld runs are in '%s'; run the same command "
+               "again to compute the rest\n",
+               static_cast<long long>(result.skipped + result.computed),
+               static_cast<long long>(result.total), store.path().c_str());
+  return false;
+}
+
+// draws report.html and report.md from OUT/summary.json with matplotlib
+int draw_report(const std::string& out) {
+  const std::string command = "PYTHONPATH='" + std::string(kSourceDir) + "/python' '" + kPython +
+                              "' -m plumetrace.report '" + out + "'";
+  const int rc = std::system(command.c_str());
+  if (rc != 0) {
+    std::fprintf(stderr,
+                 "plumetrace: error: drawing the report failed (%s); the results are kept in "
+                 "%s/\n",
+                 command.c_str(), out.c_str());
+    return kIoFailure;
+  }
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
+  auto* sub = app.add_subcommand(
+      "reproduce", "run the paper's nine experiment sets and write the report (report.html)");
+  sub->add_option("--preset", cmd.preset,
+                  "plume preset: lochmatter2008 (default) or paper-literal");
+  sub->add_option("--runs", cmd.runs, "runs per value (default 50, as the paper)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--threads", cmd.threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--out", cmd.out, "output folder: store, summary and report (default: out)");
+  sub->add_option("--experiments", cmd.experiments,
+                  "folder of the sweep files (default: experiments/lochmatter2008)");
+  sub->add_flag("--quiet", cmd.quiet, "no progress bar");
+  sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
+  return sub;
+}
+
+int run_reproduce_command(const ReproduceCommand& cmd) {
+  const std::string dir = experiments_dir(cmd.experiments);
+  std::vector<ExpandedSweep> sweeps;
+  for (const auto& def : read_sets(dir, true)) {
+    // the preset applies to every sweep that does not choose its own (the literal one does)
+    std::vector<Setting> overrides;
+    if (!cmd.preset.empty() && !sets_key(def, "plume.preset")) {
+      overrides.push_back({"plume.preset", cmd.preset, true, "--preset"});
+    }
+    sweeps.push_back(expand_sweep(def, overrides));
+  }
+  std::filesystem::create_directories(cmd.out);
+  Store store(cmd.out + "/results.sqlite", campaign_definition(sweeps), version(), cmd.fresh);
+  CampaignResult result;
+  if (!run_with_progress("reproduce", sweeps, store, cmd.runs, cmd.threads, cmd.quiet, result)) {
+    return kInterrupted;
+  }
+  const auto rows = store.rows();
+
+  ReproduceInfo info;
+  info.command = cmd.command_line;
+  info.preset = cmd.preset.empty() ? "lochmatter2008" : cmd.preset;
+  info.runs_override = cmd.runs;
+  info.threads =
+      cmd.threads > 0 ? cmd.threads : static_cast<int>(std::thread::hardware_concurrency());
+  info.elapsed = result.elapsed;
+  std::vector<Setting> base;
+  if (!cmd.preset.empty()) base.push_back({"plume.preset", cmd.preset, true, "--preset"});
+  info.base_config = scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, base));
+  write_exports(cmd.out, sweeps, rows, cmd.runs);
+  write_text(cmd.out + "/summary.json", build_summary(sweeps, rows, info));
+  if (const int rc = draw_report(cmd.out)) return rc;
+  std::printf(
+      "%lld runs (%lld computed now in %.1f s, %lld from the store)\nreport: %s/report.html "
+      "(and report.md)\n",
+      static_cast<long long>(result.total), static_cast<long long>(result.computed), result.elapsed,
+      static_cast<long long>(result.skipped), cmd.out.c_str());
+  return 0;
+}
+
+CLI::App* add_sensitivity_command(CLI::App& app, SensitivityCommand& cmd) {
+  auto* sub = app.add_subcommand(
+      "sensitivity",
+      "rerun the nine sets under every noise mode, kernel and success radius; claims matrix");
+  sub->add_option("--runs", cmd.runs, "runs per value (default 10)")->check(CLI::PositiveNumber);
+  sub->add_option("--threads", cmd.threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--out", cmd.out, "output folder (default: out, beside reproduce's report)");
+  sub->add_option("--experiments", cmd.experiments,
+                  "folder of the sweep files (default: experiments/lochmatter2008)");
+  sub->add_flag("--quiet", cmd.quiet, "no progress bar");
+  sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
+  return sub;
+}
+
+int run_sensitivity_command(const SensitivityCommand& cmd) {
+  std::vector<ExpandedSweep> sweeps;
+  for (const auto& def :
+       sensitivity_sweeps(read_sets(experiments_dir(cmd.experiments), false), cmd.runs)) {
+    sweeps.push_back(expand_sweep(def, {}));
+  }
+  std::filesystem::create_directories(cmd.out);
+  Store store(cmd.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(), cmd.fresh);
+  CampaignResult result;
+  if (!run_with_progress("sensitivity", sweeps, store, cmd.runs, cmd.threads, cmd.quiet, result)) {
+    return kInterrupted;
+  }
+  const auto matrix = sensitivity_matrix(sweeps, store.rows(), cmd.runs);
+  write_text(cmd.out + "/sensitivity.json", sensitivity_json(matrix, cmd.runs, result.elapsed));
+  const std::string md = sensitivity_markdown(matrix, cmd.runs, result.elapsed);
+  write_text(cmd.out + "/sensitivity.md", md);
+  std::fputs(md.c_str(), stdout);
+  // a report already in the folder gains the matrix
+  if (std::filesystem::exists(cmd.out + "/summary.json")) return draw_report(cmd.out);
+  return 0;
+}
+
+CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
+  auto* sub = app.add_subcommand("sweep", "run a sweep file's grid of runs into a results store");
+  sub->add_option("sweep", cmd.file, "sweep TOML file")->required();
+  sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep file's)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--threads", cmd.threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--store", cmd.store, "results store (default: OUT/results.sqlite)");
+  sub->add_option("--out", cmd.out, "output folder for exports (default: out/NAME)");
+  sub->add_option("--set", cmd.sets, "override a key of the base scenario (repeatable)")
+      ->allow_extra_args(false);
+  sub->add_flag("--quiet", cmd.quiet, "no progress bar");
+  sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
+  return sub;
+}
+
+int run_sweep_command(const SweepCommand& cmd) {
+  const SweepDef def = read_sweep_file(cmd.file);
+  const std::vector<ExpandedSweep> sweeps{expand_sweep(def, parse_sets(cmd.sets))};
+  const std::string out = cmd.out.empty() ? "out/" + def.name : cmd.out;
+  std::filesystem::create_directories(out);
+  const std::string store_path = cmd.store.empty() ? out + "/results.sqlite" : cmd.store;
+
+  Store store(store_path, campaign_definition(sweeps), version(), cmd.fresh);
+  install_stop_handlers();
+  ProgressBar bar("sweep " + def.name, !cmd.quiet && stderr_is_terminal());
+  CampaignOptions options;
+  options.threads = cmd.threads;
+  options.stop = &g_stop;
+  options.on_progress = [&](const Progress& p) { bar.update(p); };
+  const CampaignResult result = run_campaign(sweeps, store, cmd.runs, options);
+  bar.finish();
+
+  if (result.interrupted) {
+    std::fprintf(stderr,
+                 "plumetrace: interrupted: %lld of %lld runs are in '%s'; run the same command "
+                 "again to compute the rest\n",
+                 static_cast<long long>(result.skipped + result.computed),
+                 static_cast<long long>(result.total), store_path.c_str());
+    return kInterrupted;
+  }
+  const auto rows = store.rows();
+  write_exports(out, sweeps, rows, cmd.runs);
+  print_summary(sweeps, rows, cmd.runs);
+  std::printf(
+      "%lld runs (%lld computed now, %lld from the store) in %.1f s; store %s; exports in "
+      "%s/\n",
+      static_cast<long long>(result.total), static_cast<long long>(result.computed),
+      static_cast<long long>(result.skipped), result.elapsed, store_path.c_str(), out.c_str());
+  return 0;
+}
+
+CLI::App* add_export_command(CLI::App& app, ExportCommand& cmd) {
+  auto* sub = app.add_subcommand(
+      "export", "write runs.csv, summary.csv and results.json from a results store");
+  sub->add_option("sweeps", cmd.sweep_files, "the sweep files the store was made from")->required();
+  sub->add_option("--store", cmd.store, "results store")->required();
+  sub->add_option("--out", cmd.out, "output folder")->required();
+  sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep files')")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--set", cmd.sets, "the --set overrides the sweep ran with (repeatable)")
+      ->allow_extra_args(false);
+  return sub;
+}
+
+int run_export_command(const ExportCommand& cmd) {
+  std::vector<ExpandedSweep> sweeps;
+  for (const auto& f : cmd.sweep_files) {
+    sweeps.push_back(expand_sweep(read_sweep_file(f), parse_sets(cmd.sets)));
+  }
+  std::string definition;
+  const auto rows = read_store_rows(cmd.store, &definition);
+  if (definition != campaign_definition(sweeps)) {
+    throw StoreError("results store '" + cmd.store +
+                     "' was not made from these sweep files (or with other --set overrides)");
+  }
+  std::filesystem::create_directories(cmd.out);
+  write_exports(cmd.out, sweeps, rows, cmd.runs);
+  return 0;
+}
+
+}  // namespace plumetrace::cli

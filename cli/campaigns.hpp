@@ -1,0 +1,77 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace plumetrace::cli {
+
+/// `plumetrace sweep SWEEP.toml ...`
+struct SweepCommand {
+  std::string file;
+  int runs = 0;
+  int threads = 0;
+  std::string store;
+  std::string out;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  bool fresh = false;
+};
+
+/// Registers `sweep` on the app.
+CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd);
+/// Runs it; returns the exit code.
+int run_sweep_command(const SweepCommand& cmd);
+
+/// `plumetrace export STORE ...`
+struct ExportCommand {
+  std::vector<std::string> sweep_files;
+  std::string store;
+  std::string out;
+  int runs = 0;
+  std::vector<std::string> sets;
+};
+
+/// Registers `export` on the app.
+CLI::App* add_export_command(CLI::App& app, ExportCommand& cmd);
+/// Runs it; returns the exit code.
+int run_export_command(const ExportCommand& cmd);
+
+/// `plumetrace reproduce ...`
+struct ReproduceCommand {
+  std::string preset;
+  int runs = 0;
+  int threads = 0;
+  std::string out = "out";
+  std::string experiments;
+  bool quiet = false;
+  bool fresh = false;
+  std::string command_line;
+};
+
+/// Registers `reproduce` on the app.
+CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd);
+/// Runs it; returns the exit code.
+int run_reproduce_command(const ReproduceCommand& cmd);
+
+/// `plumetrace sensitivity ...`
+struct SensitivityCommand {
+  int runs = 10;
+  int threads = 0;
+  std::string out = "out";
+  std::string experiments;
+  bool quiet = false;
+  bool fresh = false;
+};
+
+/// Registers `sensitivity` on the app.
+CLI::App* add_sensitivity_command(CLI::App& app, SensitivityCommand& cmd);
+/// Runs it; returns the exit code.
+int run_sensitivity_command(const SensitivityCommand& cmd);
+
+/// Exit codes shared by every command.
+inline constexpr int kBadInput = 2;
+inline constexpr int kIoFailure = 3;
+inline constexpr int kInterrupted = 130;
+
+}  // namespace plumetrace::cli

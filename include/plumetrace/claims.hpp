@@ -1,0 +1,40 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "plumetrace/stats.hpp"
+
+namespace plumetrace {
+
+/// Whether the data support a claim beyond their statistical noise (rules in docs/claims.md).
+enum class Verdict { kHolds, kDoesNotHold, kUnclear };
+
+/// Name of a verdict: "holds", "does not hold", "unclear".
+std::string_view verdict_name(Verdict v);
+
+/// One experiment set: an algorithm with one varied parameter (SPEC section 7).
+struct SetStats {
+  std::string name;                ///< "A".."I"
+  std::string algorithm;           ///< "casting", "surge-spiral", "surge-cast"
+  std::string key;                 ///< varied config key, e.g. "casting.beta_deg"
+  std::vector<double> values;      ///< axis values in increasing order
+  std::vector<PointStats> points;  ///< one per value
+  int fixed_index = -1;            ///< index of the paper's fixed value in `values`, -1 if absent
+};
+
+/// The verdict on one claim of SPEC section 8, with the figures that decided it.
+struct ClaimResult {
+  int id = 0;                           ///< claim number, 1-11
+  std::string text;                     ///< the claim as SPEC section 8 words it
+  Verdict verdict = Verdict::kUnclear;  ///< holds, does not hold or unclear
+  std::string evidence;                 ///< the deciding figures, one clause per tested part
+};
+
+/// Evaluates SPEC section 8's claims 1-11 from the nine sets, keyed by name "A".."I". A claim
+/// whose sets are missing (or malformed) is kUnclear with evidence saying so.
+std::vector<ClaimResult> evaluate_claims(const std::map<std::string, SetStats>& sets);
+
+}  // namespace plumetrace

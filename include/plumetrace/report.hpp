@@ -1,0 +1,58 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "plumetrace/claims.hpp"
+#include "plumetrace/store.hpp"
+#include "plumetrace/sweep.hpp"
+
+namespace plumetrace {
+
+/// The statistics of a single-axis sweep as an experiment set (SPEC section 7); the varied
+/// values must be numbers. `points` selects a subset of the sweep's points (all when empty) and
+/// `axis` which axis is the varied one.
+SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
+                   const std::vector<int>& points = {}, std::size_t axis = 0);
+
+/// What `reproduce` hands to the report beyond the store's rows.
+struct ReproduceInfo {
+  std::string command;      ///< the command line
+  std::string preset;       ///< plume preset of the nine sets
+  int runs_override = 0;    ///< --runs (0: the sweep files')
+  int threads = 0;          ///< worker threads used
+  double elapsed = 0.0;     ///< seconds spent running (this call)
+  std::string base_config;  ///< the resolved base scenario (TOML)
+};
+
+/// Builds summary.json for the report (schema in docs/report.md): the nine sets' statistics,
+/// the claims, the sensitivity rows, one successful trajectory per algorithm at the fixed values
+/// (re-run from its seed and trial), and the plume's detection map.
+std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                          const ReproduceInfo& info);
+
+/// One row of the sensitivity claims matrix.
+struct SensitivityRow {
+  std::string noise_mode;           ///< plume.noise_mode
+  std::string kernel;               ///< plume.kernel
+  double success_radius = 0.0;      ///< supervisor.success_radius (m)
+  std::vector<ClaimResult> claims;  ///< claims 1-11 under this combination
+};
+
+/// The sensitivity study's sweeps: each of the nine sets with the axes noise_mode, kernel and
+/// success radius put in front of its own (SPEC section 8b).
+std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs);
+
+/// The claims matrix from the sensitivity sweeps' rows.
+std::vector<SensitivityRow> sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
+                                               const std::vector<RunRow>& rows, int runs);
+
+/// sensitivity.json (schema in docs/report.md).
+std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs, double elapsed);
+
+/// The claims matrix as a Markdown table.
+std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int runs,
+                                 double elapsed);
+
+}  // namespace plumetrace

@@ -1,0 +1,125 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plumetrace/scenario.hpp"
+#include "plumetrace/world.hpp"
+
+namespace plumetrace {
+
+/// One varied config key and its values.
+struct Axis {
+  /// Dotted config key.
+  std::string key;
+  /// Values in sweep order.
+  std::vector<ConfigValue> values;
+  /// Axis label for reports (defaults to the key).
+  std::string label;
+  /// The paper's fixed value of this parameter, if it is among the values (for reports).
+  std::optional<ConfigValue> fixed;
+};
+
+/// A sweep: a base scenario, axes forming a grid, runs per point and a master seed.
+struct SweepDef {
+  /// Short name ("A"), unique within a campaign.
+  std::string name;
+  /// One-line title for reports.
+  std::string title;
+  /// Base scenario file (empty: built-in defaults), as resolved from the sweep file's folder.
+  std::string scenario_path;
+  /// Fixed settings applied on top of the base scenario (the sweep file's [set] table).
+  std::vector<Setting> settings;
+  /// Varied keys; several form a grid, the first varying slowest.
+  std::vector<Axis> axes;
+  /// Runs (trials 0..runs-1) per point.
+  int runs = 10;
+  /// Master seed of every run.
+  std::uint64_t seed = 1;
+  /// The file it was read from (for messages and reports).
+  std::string file;
+};
+
+/// One grid point of a sweep with its fully resolved scenario.
+struct SweepPoint {
+  /// Index in the sweep's grid order.
+  int index = 0;
+  /// One value per axis.
+  std::vector<ConfigValue> values;
+  /// The resolved scenario.
+  Scenario scenario;
+  /// Hash of the resolved scenario (hex), stored with every run.
+  std::string config_hash;
+};
+
+/// A sweep with its points expanded.
+struct ExpandedSweep {
+  SweepDef def;                    ///< the definition
+  std::vector<SweepPoint> points;  ///< grid points
+};
+
+/// Expands a sweep into its grid points; `overrides` (--set) apply after the sweep's own
+/// settings and may not name an axis key. Throws ConfigError naming the sweep, axis and value.
+ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& overrides);
+
+/// FNV-1a 64-bit hash of a text, as 16 hex digits.
+std::string hash_text(const std::string& text);
+
+/// One run of a campaign and its result.
+struct RunRow {
+  std::string sweep;        ///< sweep name
+  int point = 0;            ///< point index in the sweep
+  std::uint64_t trial = 0;  ///< trial index
+  std::string config_hash;  ///< hash of the point's resolved scenario
+  RunResult result;         ///< metrics (with seed and trial)
+};
+
+/// Progress of a campaign.
+struct Progress {
+  std::int64_t done = 0;   ///< runs finished in this call
+  std::int64_t total = 0;  ///< runs to do in this call
+  double elapsed = 0.0;    ///< seconds since the start of this call
+};
+
+/// How to run a campaign.
+struct CampaignOptions {
+  /// Worker threads (0: all cores).
+  int threads = 0;
+  /// Set from outside (a signal handler) to stop dispatching new runs.
+  const std::atomic<bool>* stop = nullptr;
+  /// Called from the calling thread about every `progress_interval` seconds and at the end.
+  std::function<void(const Progress&)> on_progress;
+  /// Seconds between progress calls and between store commits.
+  double progress_interval = 0.25;
+};
+
+/// What a campaign call did.
+struct CampaignResult {
+  std::int64_t total = 0;     ///< runs the campaign defines
+  std::int64_t skipped = 0;   ///< already in the store
+  std::int64_t computed = 0;  ///< computed and stored by this call
+  bool interrupted = false;   ///< stopped before all were computed
+  double elapsed = 0.0;       ///< seconds
+};
+
+/// Where finished runs go: called from the calling thread with batches, in any order.
+using RowSink = std::function<void(const std::vector<RunRow>&)>;
+
+/// A run to do: sweep index, point index, trial.
+struct RunTask {
+  int sweep = 0;            ///< index into the campaign's sweeps
+  int point = 0;            ///< point index
+  std::uint64_t trial = 0;  ///< trial index
+};
+
+/// Runs the tasks on `threads` workers and hands results to `sink` in batches; each run is a
+/// pure function of its (point, trial), so the rows do not depend on the thread count.
+CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
+                         const std::vector<RunTask>& tasks, const CampaignOptions& options,
+                         const RowSink& sink);
+
+}  // namespace plumetrace

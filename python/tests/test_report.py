@@ -1,0 +1,316 @@
+"""Tests for plumetrace.report: a report built from a small synthetic summary.json."""
+
+import json
+import math
+import os
+import random
+import re
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+PYTHON_DIR = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(PYTHON_DIR))
+
+from plumetrace import report  # noqa: E402
+
+SETS = [
+    ("A", "casting", "casting.beta_deg", "upwind angle beta (deg)", [5, 15, 25, 35]),
+    ("B", "casting", "casting.d_lost", "plume lost distance d_lost (m)", [0.1535, 0.307, 0.614]),
+    ("C", "casting", "wind_sensor.sigma_a", "wind sensor noise sigma_a (m/s)", [0.0, 0.1, 0.8]),
+    ("D", "surge-spiral", "surge_spiral.d_gap", "spiral gap d_gap (m)", [0.111, 0.222, 0.333]),
+    ("E", "surge-spiral", "surge_spiral.d_lost", "plume lost distance d_lost (m)", [0.307, 0.614]),
+    ("F", "surge-spiral", "wind_sensor.sigma_a", "wind sensor noise sigma_a (m/s)", [0.1, 0.5]),
+    ("G", "surge-cast", "surge_cast.d_cast", "cast distance d_cast (m)", [0.0675, 0.27, 0.405]),
+    ("H", "surge-cast", "surge_cast.d_lost", "plume lost distance d_lost (m)", [0.307, 0.614]),
+    ("I", "surge-cast", "wind_sensor.sigma_a", "wind sensor noise sigma_a (m/s)", [0.1, 0.8]),
+]
+FIXED = {"A": 25, "B": 0.614, "C": 0.1, "D": 0.222, "E": 0.614, "F": 0.1, "G": 0.27,
+         "H": 0.614, "I": 0.1}
+VERDICTS = ["holds", "does not hold", "unclear"]
+CLAIM_TEXTS = [f"Claim number {i} <b>&amp; beta > 20 deg</b>" for i in range(1, 12)]
+VARIANTS = ["success_radius=0.185", "success_radius=0.3", "preset=paper-literal"]
+RUNS = 20
+
+
+def _point(rng, runs, successes, value=None):
+    """One point with the summary.json fields; no overhead statistics without a success."""
+    rest = runs - successes
+    walls = rest // 2
+    p = {"runs": runs, "successes": successes, "walls": walls, "timeouts": 0,
+         "gave_up": rest - walls, "success_rate": successes / runs,
+         "success_lo": max(0.0, successes / runs - 0.15),
+         "success_hi": min(1.0, successes / runs + 0.15),
+         "mean_time": 150.0 + rng.random() * 50 if successes else None,
+         "config_hash": f"{rng.getrandbits(64):016x}"}
+    if value is not None:
+        p["value"] = value
+    if successes == 0:
+        p["overhead"] = {"n": 0, "mean": None, "lo": None, "hi": None, "median": None,
+                         "q1": None, "q3": None}
+    elif successes == 1:
+        m = 1.1 + rng.random()
+        p["overhead"] = {"n": 1, "mean": m, "lo": None, "hi": None, "median": m, "q1": m, "q3": m}
+    else:
+        m = 1.1 + rng.random()
+        p["overhead"] = {"n": successes, "mean": m, "lo": m - 0.05, "hi": m + 0.05,
+                         "median": m - 0.01, "q1": m - 0.04, "q3": m + 0.04}
+    return p
+
+
+def _trajectory(algorithm, set_name, states):
+    n = 200
+    xs = [15.5 - 14.5 * i / (n - 1) for i in range(n)]
+    ys = [0.4 * math.sin(i / 8.0) for i in range(n)]
+    return {"algorithm": algorithm, "set": set_name, "trial": 7, "seed": 20080101, "x": xs,
+            "y": ys, "state": [states[(i // 25) % len(states)] for i in range(n)],
+            "odor": [int(abs(y) < 0.3) for y in ys], "outcome": "success", "overhead": 1.3}
+
+
+def make_summary():
+    """A synthetic summary.json following the schema in docs/report.md."""
+    rng = random.Random(1)
+    sets = []
+    for name, alg, key, label, values in SETS:
+        points = []
+        for i, v in enumerate(values):
+            # C's last value and G's first have no successful run; one point has exactly one
+            successes = 0 if (name, i) in (("C", 2), ("G", 0)) else (
+                1 if (name, i) == ("I", 1) else rng.randint(2, RUNS))
+            points.append(_point(rng, RUNS, successes, v))
+        sets.append({"name": name, "title": f"{alg}: {label}", "algorithm": alg, "key": key,
+                     "label": label, "values": values, "fixed_index": values.index(FIXED[name]),
+                     "points": points})
+    claims = [{"id": i + 1, "text": CLAIM_TEXTS[i], "verdict": VERDICTS[i % 3],
+               "evidence": f"evidence {i + 1}: 12/20 vs 3/20"} for i in range(11)]
+    rows = [dict(_point(rng, RUNS, rng.randint(0, RUNS)), algorithm=a, variant=v)
+            for a in ("casting", "surge-spiral", "surge-cast") for v in VARIANTS]
+    xs = [0.25 + 0.5 * i for i in range(32)]
+    ys = [-1.75 + 0.5 * j for j in range(8)]
+    fraction = [[max(0.0, 1.0 - abs(y) / 0.6) if x > 1 else 0.0 for x in xs] for y in ys]
+    return {
+        "plumetrace_summary": 1, "version": "0.1.0",
+        "generated_by": "plumetrace reproduce --runs 20 --out out/test",
+        "preset": "lochmatter2008", "seed": 20080101, "runs_per_point": RUNS,
+        "total_runs": RUNS * sum(len(s[4]) for s in SETS), "elapsed_s": 12.5, "threads": 2,
+        "sets": sets, "claims": claims,
+        "sensitivity": {"variants": VARIANTS, "rows": rows},
+        "trajectories": [_trajectory("casting", "A", ["upwind", "crosswind"]),
+                         _trajectory("surge-spiral", "D", ["surge", "spiral"])],
+        "trajectories_missing": ["surge-cast"],
+        "detection_map": {"x": xs, "y": ys, "fraction": fraction},
+        "arena": {"x_min": 0, "x_max": 16, "y_min": -2, "y_max": 2},
+        "source": {"x": 1, "y": 0, "radius": 0.12, "success_radius": 0.185},
+        "config_toml": "[plume]\nnoise_mode = \"velocity\"\n# <not a tag> & more\n",
+        "sweeps": [{"name": s[0], "file": f"experiments/lochmatter2008/{s[0]}.toml",
+                    "definition": {"key": s[2], "values": s[4]}} for s in SETS],
+    }
+
+
+def make_sensitivity():
+    rows = []
+    for noise in ("velocity", "per_step", "wiener"):
+        for kernel in ("gaussian", "printed"):
+            for radius in (0.185, 0.6):
+                verdicts = [VERDICTS[(len(rows) + j) % 3] for j in range(11)]
+                rows.append({"noise_mode": noise, "kernel": kernel, "success_radius": radius,
+                             "verdicts": verdicts, "held": verdicts.count("holds")})
+    return {"plumetrace_sensitivity": 1, "version": "0.1.0", "runs_per_point": 10,
+            "elapsed_s": 1500.0,
+            "claims": [{"id": i + 1, "text": CLAIM_TEXTS[i]} for i in range(11)], "rows": rows}
+
+
+def write_json(path, data):
+    path.write_text(json.dumps(data), encoding="utf-8")
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """A report built once from the synthetic summary plus a sensitivity.json."""
+    out = tmp_path_factory.mktemp("report")
+    write_json(out / "summary.json", make_summary())
+    write_json(out / "sensitivity.json", make_sensitivity())
+    written = report.build_report(out)
+    return out, written
+
+
+def expected_figures(with_sensitivity=True):
+    names = [f"set_{s[0]}.png" for s in SETS] + ["trajectories.png", "sensitivity.png"]
+    return names + (["sensitivity_claims.png"] if with_sensitivity else [])
+
+
+def png_size(path):
+    """(width, height) from a PNG's IHDR chunk; fails if the file is not a PNG."""
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    assert data[12:16] == b"IHDR"
+    assert data[-8:-4] == b"IEND"
+    return struct.unpack(">II", data[16:24])
+
+
+def run_cli(out_dir):
+    env = dict(os.environ, PYTHONPATH=str(PYTHON_DIR))
+    return subprocess.run([sys.executable, "-m", "plumetrace.report", str(out_dir)],
+                          capture_output=True, text=True, env=env, timeout=120)
+
+
+def test_build_writes_every_figure_as_a_valid_png(built):
+    out, written = built
+    for name in expected_figures():
+        path = out / "figures" / name
+        assert path.exists(), name
+        width, height = png_size(path)
+        assert width > 200 and height > 100
+        assert path in written
+    assert out / "report.html" in written and out / "report.md" in written
+
+
+def test_html_embeds_every_figure_and_needs_no_network(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    images = re.findall(r'<img src="data:image/png;base64,([A-Za-z0-9+/=]+)"', text)
+    assert len(images) == len(expected_figures())
+    for name in expected_figures():
+        encoded = __import__("base64").b64encode((out / "figures" / name).read_bytes()).decode()
+        assert encoded in images, name
+    assert not re.search(r"""(src|href)=["']?(https?:)?//""", text)
+    assert "<script" not in text and "<link" not in text
+
+
+def test_html_claims_table_shows_each_claim_with_its_coloured_verdict(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    claims_html = text[text.index('id="claims"'):text.index('id="sensitivity"')]
+    css_class = {"holds": "holds", "does not hold": "fails", "unclear": "unclear"}
+    for i, claim_text in enumerate(CLAIM_TEXTS):
+        verdict = VERDICTS[i % 3]
+        assert report.html.escape(claim_text) in claims_html
+        assert re.search(rf'<td class="verdict {css_class[verdict]}">[^<]*{verdict}</td>',
+                         claims_html), verdict
+        assert f"evidence {i + 1}: 12/20 vs 3/20" in claims_html
+
+
+def test_html_escapes_inserted_text(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    assert "<b>&amp; beta" not in text
+    assert "&lt;b&gt;&amp;amp; beta &gt; 20 deg&lt;/b&gt;" in text
+    assert "# &lt;not a tag&gt; &amp; more" in text
+
+
+def test_html_has_every_section_and_set(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    for anchor in ["sets", "trajectories", "claims", "sensitivity", "sensitivity-claims",
+                   "reproducibility"] + [f"set-{s[0]}" for s in SETS]:
+        assert f'id="{anchor}"' in text, anchor
+    for field in ("plumetrace reproduce --runs 20 --out out/test", "lochmatter2008", "20080101"):
+        assert field in text
+    assert "surge-cast: no successful run" not in text  # only in the figure, not as html
+    assert "No successful run at the fixed values for: surge-cast" in text
+
+
+def test_markdown_references_every_figure(built):
+    out, _ = built
+    text = (out / "report.md").read_text(encoding="utf-8")
+    for name in expected_figures():
+        assert f"](figures/{name})" in text, name
+    for anchor in ("claims", "sensitivity", "sensitivity-claims", "reproducibility"):
+        assert f'<a id="{anchor}"></a>' in text
+    for i in range(11):
+        assert VERDICTS[i % 3] in text
+    assert "```toml\n[plume]" in text
+
+
+def test_set_table_marks_fixed_value_and_missing_overhead(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    set_c = text[text.index('id="set-C"'):text.index('id="set-D"')]
+    assert '<tr class="fixed"><td class="num">0.1 (fixed)</td>' in set_c
+    assert "no successful run" in set_c
+    assert "No overhead bar where no run succeeded" in set_c
+
+
+def test_sensitivity_claims_section_only_with_sensitivity_json(tmp_path):
+    write_json(tmp_path / "summary.json", make_summary())
+    report.build_report(tmp_path)
+    html_text = (tmp_path / "report.html").read_text(encoding="utf-8")
+    md_text = (tmp_path / "report.md").read_text(encoding="utf-8")
+    assert 'id="sensitivity-claims"' not in html_text
+    assert "sensitivity-claims" not in md_text
+    assert "sensitivity_claims.png" not in md_text
+    assert 'id="sensitivity"' in html_text  # the summary's own sensitivity block stays
+
+    write_json(tmp_path / "sensitivity.json", make_sensitivity())
+    report.build_report(tmp_path)
+    html_text = (tmp_path / "report.html").read_text(encoding="utf-8")
+    md_text = (tmp_path / "report.md").read_text(encoding="utf-8")
+    assert 'id="sensitivity-claims"' in html_text
+    assert "10 runs per point" in html_text
+    assert html_text.count('class="cell holds"') == sum(
+        r["verdicts"].count("holds") for r in make_sensitivity()["rows"])
+    assert "](figures/sensitivity_claims.png)" in md_text
+
+
+def test_minimal_summary_without_optional_blocks_builds(tmp_path):
+    summary = make_summary()
+    for key in ("claims", "sensitivity", "trajectories", "trajectories_missing",
+                "detection_map", "arena", "source", "config_toml", "sweeps", "elapsed_s"):
+        del summary[key]
+    write_json(tmp_path / "summary.json", summary)
+    written = report.build_report(tmp_path)
+    assert (tmp_path / "figures" / "trajectories.png").exists()
+    assert not (tmp_path / "figures" / "sensitivity.png").exists()
+    text = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert "This summary has no claims." in text
+    assert "This summary has no sensitivity block." in text
+    assert len(written) == 2 + len(SETS) + 1
+
+
+def test_cli_builds_report_and_exits_zero(tmp_path):
+    write_json(tmp_path / "summary.json", make_summary())
+    result = run_cli(tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "report.html" in result.stdout
+    assert (tmp_path / "report.html").exists() and (tmp_path / "report.md").exists()
+
+
+@pytest.mark.parametrize("content, message", [
+    ("{not json", "not valid JSON"),
+    ("[1, 2]", "expected a JSON object"),
+    ('{"sets": []}', "not a plumetrace summary"),
+    ('{"plumetrace_summary": 2, "sets": []}', "not supported"),
+    ('{"plumetrace_summary": 1, "sets": [{"name": "A", "points": [{"value": 1, "runs": "x", '
+     '"successes": 0}]}]}', "sets[0].points[0].runs"),
+])
+def test_malformed_summary_exits_nonzero_naming_the_file(tmp_path, content, message):
+    (tmp_path / "summary.json").write_text(content, encoding="utf-8")
+    result = run_cli(tmp_path)
+    assert result.returncode != 0
+    assert str(tmp_path / "summary.json") in result.stderr
+    assert message in result.stderr
+    assert not (tmp_path / "report.html").exists()
+
+
+def test_missing_summary_exits_nonzero_naming_the_file(tmp_path):
+    result = run_cli(tmp_path)
+    assert result.returncode != 0
+    assert str(tmp_path / "summary.json") in result.stderr
+    assert "not found" in result.stderr
+
+
+def test_malformed_sensitivity_names_that_file(tmp_path):
+    write_json(tmp_path / "summary.json", make_summary())
+    (tmp_path / "sensitivity.json").write_text('{"plumetrace_sensitivity": 1}', encoding="utf-8")
+    with pytest.raises(report.ReportError, match=re.escape(str(tmp_path / "sensitivity.json"))):
+        report.build_report(tmp_path)
+
+
+def test_wilson_interval_matches_known_values():
+    lo, hi = report.wilson_interval(12, 50)
+    assert lo == pytest.approx(0.1430, abs=1e-4)
+    assert hi == pytest.approx(0.3741, abs=1e-4)
+    assert report.wilson_interval(0, 0) == (None, None)

@@ -1,0 +1,373 @@
+#include "plumetrace/report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "json_util.hpp"
+#include "plumetrace/campaign.hpp"
+#include "plumetrace/io.hpp"
+#include "plumetrace/probe.hpp"
+#include "plumetrace/stats.hpp"
+#include "plumetrace/trace.hpp"
+
+namespace plumetrace {
+
+namespace {
+
+using detail::json;
+using detail::number_or_null;
+using detail::stats_json;
+using detail::value_to_json;
+
+const char* const kSetNames[] = {"A", "B", "C", "D", "E", "F", "G", "H", "I"};
+
+double as_number(const ConfigValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  return NAN;
+}
+
+std::string as_text(const ConfigValue& v) {
+  return std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v);
+}
+
+const ExpandedSweep* find(const std::vector<ExpandedSweep>& sweeps, const std::string& name) {
+  for (const auto& s : sweeps) {
+    if (s.def.name == name) return &s;
+  }
+  return nullptr;
+}
+
+json point_json(const PointStats& st, const SweepPoint& p) {
+  json j = stats_json(st);
+  j["config_hash"] = p.config_hash;
+  return j;
+}
+
+// a successful run of the set's fixed point, re-run with a trace (Fig. 6)
+json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs) {
+  const SetStats st = set_stats(sweep, rows, runs);
+  if (st.fixed_index < 0) return nullptr;
+  const SweepPoint& p = sweep.points[static_cast<std::size_t>(st.fixed_index)];
+  for (const auto& r : point_runs(rows, sweep.def.name, p.index, runs)) {
+    if (r.outcome != Outcome::kSuccess) continue;
+    Trace trace;
+    const RunResult again =
+        run_once(p.scenario, r.seed, r.trial, TraceRecorder(trace, 0.0, p.scenario.sim.dt));
+    json x = json::array(), y = json::array(), state = json::array(), odor = json::array();
+    // every other step is plenty for a figure
+    for (std::size_t i = 0; i < trace.steps.size(); i += 2) {
+      const auto& s = trace.steps[i];
+      x.push_back(s.pose.x);
+      y.push_back(s.pose.y);
+      state.push_back(s.state);
+      odor.push_back(s.odor ? 1 : 0);
+    }
+    return {{"algorithm", st.algorithm},
+            {"set", sweep.def.name},
+            {"trial", r.trial},
+            {"seed", r.seed},
+            {"x", x},
+            {"y", y},
+            {"state", state},
+            {"odor", odor},
+            {"outcome", std::string(outcome_name(again.outcome))},
+            {"overhead", number_or_null(again.overhead)}};
+  }
+  return nullptr;
+}
+
+// fraction of instants with odor on a grid over the arena (the background of Fig. 6)
+json detection_map(const Scenario& scenario, std::uint64_t seed) {
+  const auto& a = scenario.arena;
+  constexpr double kDx = 0.2, kDy = 0.05;
+  std::vector<double> xs, ys;
+  for (double x = a.x_min + kDx / 2; x < a.x_max; x += kDx) xs.push_back(x);
+  for (double y = a.y_min + kDy / 2; y < a.y_max; y += kDy) ys.push_back(y);
+  std::vector<Vec3> points;
+  for (const double y : ys) {
+    for (const double x : xs) points.push_back({x, y, scenario.odor.height});
+  }
+  ProbeOptions options;
+  options.duration = 20.0;
+  options.interval = 0.32;
+  options.seed = seed;
+  const auto results = probe_plume(scenario, points, options);
+  json fraction = json::array();
+  for (std::size_t j = 0; j < ys.size(); ++j) {
+    json row = json::array();
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      row.push_back(results[j * xs.size() + i].detect_fraction);
+    }
+    fraction.push_back(row);
+  }
+  return {{"x", xs}, {"y", ys}, {"fraction", fraction}};
+}
+
+json sweep_definition_json(const SweepDef& def) {
+  json axes = json::array();
+  for (const auto& ax : def.axes) {
+    json values = json::array();
+    for (const auto& v : ax.values) values.push_back(value_to_json(v));
+    axes.push_back({{"key", ax.key}, {"label", ax.label}, {"values", values}});
+  }
+  json settings = json::object();
+  for (const auto& s : def.settings) settings[s.key] = value_to_json(s.value);
+  return {{"name", def.name}, {"title", def.title}, {"scenario", def.scenario_path},
+          {"set", settings},  {"axes", axes},       {"runs", def.runs},
+          {"seed", def.seed}};
+}
+
+}  // namespace
+
+SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
+                   const std::vector<int>& points, std::size_t axis) {
+  SetStats st;
+  st.name = sweep.def.name;
+  st.key = sweep.def.axes.at(axis).key;
+  std::vector<int> selected = points;
+  if (selected.empty()) {
+    for (const auto& p : sweep.points) selected.push_back(p.index);
+  }
+  for (const int index : selected) {
+    const SweepPoint& p = sweep.points.at(static_cast<std::size_t>(index));
+    st.algorithm = std::string(algorithm_name(p.scenario.controller.algorithm));
+    const double value = as_number(p.values.at(axis));
+    const auto& fixed = sweep.def.axes[axis].fixed;
+    if (fixed && std::fabs(as_number(*fixed) - value) < 1e-12) {
+      st.fixed_index = static_cast<int>(st.values.size());
+    }
+    st.values.push_back(value);
+    st.points.push_back(summarize(point_runs(rows, sweep.def.name, index, runs)));
+  }
+  return st;
+}
+
+std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                          const ReproduceInfo& info) {
+  json doc;
+  doc["plumetrace_summary"] = 1;
+  doc["version"] = std::string(version());
+  doc["generated_by"] = info.command;
+  doc["preset"] = info.preset;
+  doc["threads"] = info.threads;
+  doc["elapsed_s"] = info.elapsed;
+  doc["config_toml"] = info.base_config;
+  std::int64_t total = 0;
+  for (const auto& s : sweeps) {
+    total += static_cast<std::int64_t>(s.points.size()) * runs_per_point(s, info.runs_override);
+  }
+  doc["total_runs"] = total;
+
+  // the nine sets and the claims
+  json sets = json::array();
+  std::map<std::string, SetStats> by_name;
+  for (const char* name : kSetNames) {
+    const ExpandedSweep* sweep = find(sweeps, name);
+    if (!sweep) continue;
+    const int runs = runs_per_point(*sweep, info.runs_override);
+    doc["seed"] = sweep->def.seed;
+    doc["runs_per_point"] = runs;
+    const SetStats st = set_stats(*sweep, rows, runs);
+    json points = json::array();
+    for (std::size_t i = 0; i < st.points.size(); ++i) {
+      json p = point_json(st.points[i], sweep->points[i]);
+      p["value"] = st.values[i];
+      points.push_back(p);
+    }
+    sets.push_back({{"name", st.name},
+                    {"title", sweep->def.title},
+                    {"algorithm", st.algorithm},
+                    {"key", st.key},
+                    {"label", sweep->def.axes[0].label},
+                    {"values", st.values},
+                    {"fixed_index", st.fixed_index},
+                    {"points", points}});
+    by_name[name] = st;
+  }
+  doc["sets"] = sets;
+  json claims = json::array();
+  for (const auto& c : evaluate_claims(by_name)) {
+    claims.push_back({{"id", c.id},
+                      {"text", c.text},
+                      {"verdict", std::string(verdict_name(c.verdict))},
+                      {"evidence", c.evidence}});
+  }
+  doc["claims"] = claims;
+
+  // the three algorithms at their fixed values under other radii and the literal preset
+  json variants = json::array(), sens_rows = json::array();
+  const auto add_variant = [&](const std::string& v) {
+    if (std::find(variants.begin(), variants.end(), json(v)) == variants.end()) {
+      variants.push_back(v);
+    }
+  };
+  if (const ExpandedSweep* radius = find(sweeps, "radius")) {
+    const int runs = runs_per_point(*radius, info.runs_override);
+    for (const auto& p : radius->points) {
+      const std::string variant = "success_radius=" + as_text(p.values.at(1));
+      add_variant(variant);
+      json row = point_json(summarize(point_runs(rows, "radius", p.index, runs)), p);
+      row["algorithm"] = as_text(p.values.at(0));
+      row["variant"] = variant;
+      sens_rows.push_back(row);
+    }
+  }
+  if (const ExpandedSweep* literal = find(sweeps, "literal")) {
+    const int runs = runs_per_point(*literal, info.runs_override);
+    add_variant("preset=paper-literal");
+    for (const auto& p : literal->points) {
+      json row = point_json(summarize(point_runs(rows, "literal", p.index, runs)), p);
+      row["algorithm"] = as_text(p.values.at(0));
+      row["variant"] = "preset=paper-literal";
+      sens_rows.push_back(row);
+    }
+  }
+  doc["sensitivity"] = {{"variants", variants}, {"rows", sens_rows}};
+
+  // Fig. 6: one successful run per algorithm at the fixed values, over the detection map
+  json trajectories = json::array(), missing = json::array();
+  for (const char* name : {"A", "D", "G"}) {
+    const ExpandedSweep* sweep = find(sweeps, name);
+    if (!sweep) continue;
+    json t = trajectory(*sweep, rows, runs_per_point(*sweep, info.runs_override));
+    if (t.is_null()) {
+      missing.push_back(
+          std::string(algorithm_name(sweep->points[0].scenario.controller.algorithm)));
+    } else {
+      trajectories.push_back(t);
+    }
+  }
+  doc["trajectories"] = trajectories;
+  doc["trajectories_missing"] = missing;
+  if (const ExpandedSweep* a = find(sweeps, "A")) {
+    const Scenario& s = a->points.at(0).scenario;
+    doc["detection_map"] = detection_map(s, a->def.seed);
+    doc["arena"] = {{"x_min", s.arena.x_min},
+                    {"x_max", s.arena.x_max},
+                    {"y_min", s.arena.y_min},
+                    {"y_max", s.arena.y_max}};
+    doc["source"] = {{"x", s.source.center.x},
+                     {"y", s.source.center.y},
+                     {"radius", s.source.radius},
+                     {"success_radius", s.supervisor.success_radius}};
+  }
+  json defs = json::array();
+  for (const auto& s : sweeps) {
+    defs.push_back(
+        {{"name", s.def.name}, {"file", s.def.file}, {"definition", sweep_definition_json(s.def)}});
+  }
+  doc["sweeps"] = defs;
+  return doc.dump(1);
+}
+
+std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs) {
+  std::vector<SweepDef> out;
+  for (SweepDef def : sets) {
+    std::vector<Axis> axes{
+        {"plume.noise_mode",
+         {std::string("velocity"), std::string("per_step"), std::string("wiener")},
+         "noise mode",
+         std::nullopt},
+        {"plume.kernel", {std::string("gaussian"), std::string("printed")}, "kernel", std::nullopt},
+        {"supervisor.success_radius", {0.185, 0.3, 0.45, 0.6}, "success radius (m)", std::nullopt}};
+    axes.insert(axes.end(), def.axes.begin(), def.axes.end());
+    def.axes = axes;
+    def.runs = runs;
+    out.push_back(def);
+  }
+  return out;
+}
+
+std::vector<SensitivityRow> sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
+                                               const std::vector<RunRow>& rows, int runs) {
+  std::vector<SensitivityRow> matrix;
+  if (sweeps.empty()) return matrix;
+  const auto& axes = sweeps.front().def.axes;
+  for (const auto& noise : axes[0].values) {
+    for (const auto& kernel : axes[1].values) {
+      for (const auto& radius : axes[2].values) {
+        // each set restricted to the points of this combination, varied along its own axis
+        std::map<std::string, SetStats> sets;
+        for (const auto& sweep : sweeps) {
+          std::vector<int> selected;
+          for (const auto& p : sweep.points) {
+            if (as_text(p.values[0]) == as_text(noise) && as_text(p.values[1]) == as_text(kernel) &&
+                as_number(p.values[2]) == as_number(radius)) {
+              selected.push_back(p.index);
+            }
+          }
+          sets[sweep.def.name] = set_stats(sweep, rows, runs, selected, 3);
+        }
+        matrix.push_back(
+            {as_text(noise), as_text(kernel), as_number(radius), evaluate_claims(sets)});
+      }
+    }
+  }
+  return matrix;
+}
+
+std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs, double elapsed) {
+  json claims = json::array(), out_rows = json::array();
+  if (!matrix.empty()) {
+    for (const auto& c : matrix.front().claims) claims.push_back({{"id", c.id}, {"text", c.text}});
+  }
+  for (const auto& row : matrix) {
+    json verdicts = json::array();
+    int held = 0;
+    for (const auto& c : row.claims) {
+      verdicts.push_back(std::string(verdict_name(c.verdict)));
+      held += c.verdict == Verdict::kHolds;
+    }
+    out_rows.push_back({{"noise_mode", row.noise_mode},
+                        {"kernel", row.kernel},
+                        {"success_radius", row.success_radius},
+                        {"verdicts", verdicts},
+                        {"held", held}});
+  }
+  return json{{"plumetrace_sensitivity", 1},
+              {"version", std::string(version())},
+              {"runs_per_point", runs},
+              {"elapsed_s", elapsed},
+              {"claims", claims},
+              {"rows", out_rows}}
+      .dump(1);
+}
+
+std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int runs,
+                                 double elapsed) {
+  std::ostringstream md;
+  md << "# Sensitivity study: which claims hold under which model reading\n\n"
+     << "Each row reruns the nine experiment sets (SPEC.md section 7) with " << runs
+     << " runs per value under one combination of noise mode, kernel and success radius "
+        "(SPEC.md section 8b). Cells: H holds, - does not hold, ? unclear "
+        "(rules in docs/claims.md). Computed in "
+     << static_cast<long>(elapsed) << " s.\n\n| noise mode | kernel | success radius |";
+  const std::size_t n = matrix.empty() ? 0 : matrix.front().claims.size();
+  for (std::size_t i = 0; i < n; ++i) md << " " << matrix.front().claims[i].id << " |";
+  md << " held |\n|---|---|---|";
+  for (std::size_t i = 0; i <= n; ++i) md << "---|";
+  md << "\n";
+  for (const auto& row : matrix) {
+    int held = 0;
+    md << "| " << row.noise_mode << " | " << row.kernel << " | " << row.success_radius << " |";
+    for (const auto& c : row.claims) {
+      md << " "
+         << (c.verdict == Verdict::kHolds         ? "H"
+             : c.verdict == Verdict::kDoesNotHold ? "-"
+                                                  : "?")
+         << " |";
+      held += c.verdict == Verdict::kHolds;
+    }
+    md << " " << held << " |\n";
+  }
+  if (!matrix.empty()) {
+    md << "\nClaims:\n\n";
+    for (const auto& c : matrix.front().claims) md << c.id << ". " << c.text << "\n";
+  }
+  return md.str();
+}
+
+}  // namespace plumetrace

@@ -1,0 +1,250 @@
+// Sweep files, grid expansion, the results store and the parallel resumable runner.
+#include "plumetrace/sweep.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "plumetrace/campaign.hpp"
+#include "plumetrace/io.hpp"
+#include "plumetrace/store.hpp"
+#include "support/temp_path.hpp"
+
+namespace plumetrace {
+namespace {
+
+// a small, quick sweep: the robot starts 2 m from the source, so runs last seconds
+const char* const kQuickSweep = R"(
+name = "quick"
+title = "a quick grid"
+runs = 4
+seed = 77
+
+[set]
+robot.start_x = 3.0
+sim.warmup = 4.0
+supervisor.timeout = 60.0
+
+[[axis]]
+key = "controller.algorithm"
+values = ["casting", "surge-cast"]
+
+[[axis]]
+key = "wind_sensor.sigma_a"
+values = [0.0, 0.3, 0.6]
+fixed = 0.3
+)";
+
+std::string write_sweep(const std::string& text) {
+  const std::string path = testing::temp_path("sweep", ".toml");
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string sweep_error(const std::string& text) {
+  try {
+    expand_sweep(read_sweep_file(write_sweep(text)), {});
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<ExpandedSweep> quick() {
+  return {expand_sweep(read_sweep_file(write_sweep(kQuickSweep)), {})};
+}
+
+// every field of two row lists, bit for bit
+void expect_same_rows(const std::vector<RunRow>& a, const std::vector<RunRow>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].sweep, b[i].sweep);
+    EXPECT_EQ(a[i].point, b[i].point);
+    EXPECT_EQ(a[i].trial, b[i].trial);
+    EXPECT_EQ(a[i].config_hash, b[i].config_hash);
+    const RunResult &x = a[i].result, &y = b[i].result;
+    EXPECT_EQ(x.outcome, y.outcome);
+    EXPECT_EQ(x.time, y.time);
+    EXPECT_EQ(x.d_t, y.d_t);
+    EXPECT_EQ(x.d_u, y.d_u);
+    EXPECT_TRUE(x.overhead == y.overhead || (std::isnan(x.overhead) && std::isnan(y.overhead)));
+    EXPECT_EQ(x.losses, y.losses);
+    EXPECT_EQ(x.odor_fraction, y.odor_fraction);
+    EXPECT_EQ(x.steps, y.steps);
+    EXPECT_EQ(x.seed, y.seed);
+  }
+}
+
+std::vector<RunRow> run_fresh(const std::vector<ExpandedSweep>& sweeps, int threads) {
+  Store store(testing::temp_path("store", ".sqlite"), campaign_definition(sweeps), version(),
+              false);
+  CampaignOptions options;
+  options.threads = threads;
+  const CampaignResult r = run_campaign(sweeps, store, 0, options);
+  EXPECT_FALSE(r.interrupted);
+  EXPECT_EQ(r.computed, 24);
+  return store.rows();
+}
+
+TEST(SweepFile, GridExpandsFirstAxisSlowest) {
+  const auto sweeps = quick();
+  const auto& points = sweeps[0].points;
+  ASSERT_EQ(points.size(), 6u);
+  EXPECT_EQ(points[0].scenario.controller.algorithm, Algorithm::kCasting);
+  EXPECT_EQ(points[2].scenario.wind_sensor.sigma_a, 0.6);
+  EXPECT_EQ(points[3].scenario.controller.algorithm, Algorithm::kSurgeCast);
+  EXPECT_EQ(points[3].scenario.wind_sensor.sigma_a, 0.0);
+  EXPECT_EQ(points[5].scenario.robot.start.x, 3.0);  // the [set] table applies everywhere
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    EXPECT_NE(points[i].config_hash, points[i - 1].config_hash);
+  }
+}
+
+TEST(SweepFile, InvalidFilesAreRejectedNamingTheProblem) {
+  const std::string base = "name = \"x\"\n";
+  struct Case {
+    std::string text, expect;
+  };
+  const Case cases[] = {
+      {base + "bogus = 1\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.01]\n",
+       "unknown or mistyped key 'bogus'"},
+      {base + "[[axis]]\nkey = \"sim.dt\"\nvalues = []\n", "axis sim.dt: values must not be empty"},
+      {base + "[[axis]]\nkey = \"casting.beta_deg\"\nvalues = [10, \"wide\"]\n",
+       "axis casting.beta_deg: casting.beta_deg: must be a number"},
+      {base + "[[axis]]\nkey = \"casting.beta\"\nvalues = [10]\n",
+       "unknown config key 'casting.beta'"},
+      {base + "[[axis]]\nkey = \"sim.dt\"\nvalues = [0]\n", "sim.dt: must be a number > 0"},
+      {base + "[[axis]]\nkey = \"sim.dt\"\nvalues = [0.1]\n[[axis]]\nkey = \"sim.dt\"\nvalues = "
+              "[0.2]\n",
+       "axis sim.dt is given twice"},
+      {"[[axis]]\nkey = \"sim.dt\"\nvalues = [0.1]\n", "missing name"},
+      {base, "no [[axis]]"},
+      {base + "runs = 0\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.1]\n",
+       "runs: must be an integer >= 1"},
+      {base + "[set]\nplume.bogus = 2\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.1]\n",
+       "unknown config key 'plume.bogus'"},
+      {base + "[[axis]]\nkey = \"sim.dt\"\nvalues = [0.1\n", "invalid TOML"},
+  };
+  for (const auto& c : cases) {
+    const std::string msg = sweep_error(c.text);
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << c.text << "\ngave: " << msg;
+    EXPECT_NE(msg.find("sweep_"), std::string::npos) << "the file is named: " << msg;
+  }
+}
+
+TEST(SweepFile, OverrideOfAnAxisKeyIsRejected) {
+  const auto def = read_sweep_file(write_sweep(kQuickSweep));
+  try {
+    expand_sweep(def, {parse_override("wind_sensor.sigma_a=0.2")});
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("names an axis"), std::string::npos) << e.what();
+  }
+  // other keys are fine and enter the config hash
+  const auto changed = expand_sweep(def, {parse_override("casting.beta_deg=30")});
+  EXPECT_NE(changed.points[0].config_hash, expand_sweep(def, {}).points[0].config_hash);
+}
+
+TEST(Campaign, OneAndTwoThreadsGiveIdenticalRows) {
+  const auto sweeps = quick();
+  expect_same_rows(run_fresh(sweeps, 1), run_fresh(sweeps, 2));
+}
+
+TEST(Campaign, RowsEqualSingleRunsOfTheSameSeedAndTrial) {
+  const auto sweeps = quick();
+  const auto rows = run_fresh(sweeps, 2);
+  for (const auto& r : rows) {
+    const auto& point = sweeps[0].points[static_cast<std::size_t>(r.point)];
+    const RunResult single = run_once(point.scenario, 77, r.trial);
+    EXPECT_EQ(single.d_t, r.result.d_t);
+    EXPECT_EQ(single.steps, r.result.steps);
+    EXPECT_EQ(single.outcome, r.result.outcome);
+  }
+}
+
+TEST(Campaign, StoppedCampaignResumesToTheRowsOfACleanOne) {
+  const auto sweeps = quick();
+  const auto clean = run_fresh(sweeps, 2);
+
+  const std::string path = testing::temp_path("resume", ".sqlite");
+  std::atomic<bool> stop{false};
+  {
+    Store store(path, campaign_definition(sweeps), version(), false);
+    CampaignOptions options;
+    options.threads = 2;
+    options.stop = &stop;
+    options.progress_interval = 0.001;
+    options.on_progress = [&](const Progress& p) {
+      if (p.done >= 5) stop = true;
+    };
+    const CampaignResult first = run_campaign(sweeps, store, 0, options);
+    EXPECT_TRUE(first.interrupted);
+    EXPECT_GE(first.computed, 5);
+    EXPECT_LT(first.computed, 24);
+  }
+  Store store(path, campaign_definition(sweeps), version(), false);
+  const auto before = store.keys().size();
+  CampaignOptions options;
+  options.threads = 2;
+  const CampaignResult second = run_campaign(sweeps, store, 0, options);
+  EXPECT_FALSE(second.interrupted);
+  EXPECT_EQ(second.skipped, static_cast<std::int64_t>(before));
+  EXPECT_EQ(second.skipped + second.computed, 24);
+  expect_same_rows(store.rows(), clean);
+}
+
+TEST(Campaign, MoreRunsExtendTheStoreAndFewerReuseIt) {
+  const auto sweeps = quick();
+  const std::string path = testing::temp_path("extend", ".sqlite");
+  Store store(path, campaign_definition(sweeps), version(), false);
+  CampaignOptions options;
+  EXPECT_EQ(run_campaign(sweeps, store, 2, options).computed, 12);
+  const CampaignResult more = run_campaign(sweeps, store, 4, options);
+  EXPECT_EQ(more.skipped, 12);
+  EXPECT_EQ(more.computed, 12);
+  EXPECT_EQ(run_campaign(sweeps, store, 3, options).computed, 0);
+  expect_same_rows(store.rows(), run_fresh(sweeps, 1));
+}
+
+TEST(Store, RefusesAnotherDefinitionUnlessFresh) {
+  const auto sweeps = quick();
+  const std::string path = testing::temp_path("refuse", ".sqlite");
+  {
+    Store store(path, campaign_definition(sweeps), version(), false);
+    run_campaign(sweeps, store, 1, {});
+  }
+  const auto other = std::vector<ExpandedSweep>{
+      expand_sweep(read_sweep_file(write_sweep(kQuickSweep)), {parse_override("sim.dt=0.05")})};
+  try {
+    Store store(path, campaign_definition(other), version(), false);
+    FAIL() << "a different definition was accepted";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("--fresh"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  try {
+    Store store(path, campaign_definition(sweeps), "0.0.0-other", false);
+    FAIL() << "another version was accepted";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("0.0.0-other"), std::string::npos) << e.what();
+  }
+  Store fresh(path, campaign_definition(other), version(), true);
+  EXPECT_TRUE(fresh.keys().empty());
+}
+
+TEST(Store, StoredRowsHaveNoDuplicatesAndKeepFullSeeds) {
+  auto def = read_sweep_file(write_sweep(kQuickSweep));
+  def.seed = 18446744073709551615ULL;  // the largest seed survives the round trip
+  const std::vector<ExpandedSweep> sweeps{expand_sweep(def, {})};
+  Store store(testing::temp_path("seed", ".sqlite"), campaign_definition(sweeps), version(), false);
+  run_campaign(sweeps, store, 2, {});
+  const auto rows = store.rows();
+  EXPECT_EQ(rows.size(), 12u);
+  EXPECT_EQ(store.keys().size(), rows.size());
+  for (const auto& r : rows) EXPECT_EQ(r.result.seed, 18446744073709551615ULL);
+  // a second insert of a stored run is refused by the store itself
+  EXPECT_THROW(store.insert({rows.front()}), StoreError);
+}
+
+}  // namespace
+}  // namespace plumetrace

@@ -1,0 +1,210 @@
+// `plumetrace sweep` and `reproduce` as processes: kill -9 and Ctrl-C mid-way, resume, report.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "plumetrace/store.hpp"
+#include "support/temp_path.hpp"
+
+namespace plumetrace {
+namespace {
+
+const std::string kCli = PLUMETRACE_CLI;
+
+// 3 points x 12 runs of about 0.05 s each: long enough to interrupt
+const char* const kSweep = R"(
+name = "interrupt"
+runs = 12
+seed = 5
+
+[set]
+robot.start_x = 4.0
+sim.warmup = 5.0
+controller.algorithm = "surge-spiral"
+
+[[axis]]
+key = "surge_spiral.d_gap"
+values = [0.111, 0.222, 0.333]
+)";
+
+std::string write_sweep() {
+  const std::string path = testing::temp_path("sweep", ".toml");
+  std::ofstream(path) << kSweep;
+  return path;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// starts the command in the background; returns its pid
+pid_t spawn(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(kCli.c_str()));
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    freopen("/dev/null", "w", stdout);
+    freopen("/dev/null", "w", stderr);
+    execv(kCli.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+std::size_t stored_runs(const std::string& store) {
+  try {
+    return read_store_rows(store, nullptr).size();
+  } catch (const StoreError&) {
+    return 0;  // not created yet
+  }
+}
+
+// waits until the store holds at least n runs (or the process ended)
+void wait_for_runs(const std::string& store, std::size_t n, pid_t pid) {
+  for (int i = 0; i < 3000; ++i) {
+    if (stored_runs(store) >= n) return;
+    int status;
+    if (waitpid(pid, &status, WNOHANG) == pid) FAIL() << "the sweep ended before it was stopped";
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  FAIL() << "no runs were stored";
+}
+
+void expect_same_rows(const std::vector<RunRow>& a, const std::vector<RunRow>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].point, b[i].point);
+    EXPECT_EQ(a[i].trial, b[i].trial);
+    EXPECT_EQ(a[i].result.d_t, b[i].result.d_t);
+    EXPECT_EQ(a[i].result.time, b[i].result.time);
+    EXPECT_EQ(a[i].result.outcome, b[i].result.outcome);
+    EXPECT_EQ(a[i].result.losses, b[i].result.losses);
+  }
+}
+
+std::vector<RunRow> clean_rows(const std::string& sweep) {
+  const std::string store = testing::temp_path("clean", ".sqlite");
+  const std::string out = testing::temp_path("clean_out", "");
+  EXPECT_EQ(wait_exit(spawn({"sweep", sweep, "--store", store, "--out", out, "--threads", "2"})),
+            0);
+  return read_store_rows(store, nullptr);
+}
+
+TEST(SweepCli, KilledSweepResumesToTheRowsOfACleanSweep) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("killed", ".sqlite");
+  const std::string out = testing::temp_path("killed_out", "");
+  const std::vector<std::string> args{"sweep", sweep, "--store",   store,
+                                      "--out", out,   "--threads", "1"};
+  const pid_t pid = spawn(args);
+  wait_for_runs(store, 3, pid);
+  kill(pid, SIGKILL);
+  EXPECT_EQ(wait_exit(pid), 128 + SIGKILL);
+  const std::size_t kept = stored_runs(store);
+  EXPECT_GE(kept, 3u);
+  EXPECT_LT(kept, 36u);
+
+  EXPECT_EQ(wait_exit(spawn(args)), 0);
+  const auto rows = read_store_rows(store, nullptr);
+  EXPECT_EQ(rows.size(), 36u);  // no duplicates: (point, trial) is the store's key
+  expect_same_rows(rows, clean_rows(sweep));
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/summary.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/results.json"));
+}
+
+TEST(SweepCli, InterruptedSweepExitsWith130AndKeepsItsRuns) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("sigint", ".sqlite");
+  const std::vector<std::string> args{"sweep",     sweep,   "--store",
+                                      store,       "--out", testing::temp_path("sigint_out", ""),
+                                      "--threads", "2"};
+  const pid_t pid = spawn(args);
+  wait_for_runs(store, 2, pid);
+  kill(pid, SIGINT);
+  EXPECT_EQ(wait_exit(pid), 130);
+  const std::size_t kept = stored_runs(store);
+  EXPECT_GE(kept, 2u);
+  EXPECT_EQ(wait_exit(spawn(args)), 0);
+  expect_same_rows(read_store_rows(store, nullptr), clean_rows(sweep));
+}
+
+TEST(SweepCli, OffATerminalItPrintsOnlyTheSummary) {
+  const std::string sweep = write_sweep();
+  const std::string out = testing::temp_path("quiet_out", "");
+  const std::string err = testing::temp_path("stderr", ".txt");
+  const std::string stdout_path = testing::temp_path("stdout", ".txt");
+  const std::string command =
+      kCli + " sweep " + sweep + " --runs 2 --out " + out + " >" + stdout_path + " 2>" + err;
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(read_file(err), "");
+  const std::string text = read_file(stdout_path);
+  EXPECT_NE(text.find("surge_spiral.d_gap=0.222"), std::string::npos) << text;
+  EXPECT_NE(text.find("6 runs"), std::string::npos) << text;
+}
+
+TEST(SweepCli, ReusingAStoreWithAnotherDefinitionNeedsFresh) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("other", ".sqlite");
+  const std::string out = testing::temp_path("other_out", "");
+  ASSERT_EQ(wait_exit(spawn({"sweep", sweep, "--runs", "1", "--store", store, "--out", out})), 0);
+  EXPECT_EQ(wait_exit(spawn({"sweep", sweep, "--runs", "1", "--store", store, "--out", out, "--set",
+                             "sim.dt=0.04"})),
+            2);
+  EXPECT_EQ(wait_exit(spawn({"sweep", sweep, "--runs", "1", "--store", store, "--out", out, "--set",
+                             "sim.dt=0.04", "--fresh"})),
+            0);
+}
+
+TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
+  const std::string out = testing::temp_path("reproduce", "");
+  ASSERT_EQ(wait_exit(spawn({"reproduce", "--runs", "1", "--out", out, "--quiet"})), 0);
+  const std::string html = read_file(out + "/report.html");
+  const std::string md = read_file(out + "/report.md");
+  std::vector<std::string> figures;
+  for (const char* set : {"A", "B", "C", "D", "E", "F", "G", "H", "I"}) {
+    figures.push_back(std::string("set_") + set + ".png");
+  }
+  figures.push_back("trajectories.png");
+  figures.push_back("sensitivity.png");
+  for (const auto& f : figures) {
+    EXPECT_TRUE(std::filesystem::file_size(out + "/figures/" + f) > 1000) << f;
+    EXPECT_NE(md.find("figures/" + f), std::string::npos) << f;
+  }
+  // every figure embedded in the self-contained HTML
+  std::size_t embedded = 0;
+  for (std::size_t at = html.find("data:image/png;base64,"); at != std::string::npos;
+       at = html.find("data:image/png;base64,", at + 1)) {
+    ++embedded;
+  }
+  EXPECT_GE(embedded, figures.size());
+  // the claims table with all eleven claims and a verdict for each
+  for (int id = 1; id <= 11; ++id) {
+    EXPECT_NE(md.find("| " + std::to_string(id) + " |"), std::string::npos) << "claim " << id;
+  }
+  EXPECT_NE(html.find("virtually all runs of D, E, F succeed"), std::string::npos);
+  for (const char* file : {"results.sqlite", "summary.json", "runs.csv", "summary.csv"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  }
+}
+
+}  // namespace
+}  // namespace plumetrace

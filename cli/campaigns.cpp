@@ -161,7 +161,7 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
     // the preset applies to every sweep that does not choose its own (the literal one does)
     std::vector<Setting> overrides;
     if (!cmd.preset.empty() && !sets_key(def, "plume.preset")) {
-      overrides.push_back({"plume.preset", cmd.preset, true, "--preset"});
+      overrides.push_back({"plume.preset", cmd.preset, true, "--preset", Layer::kCommandLine});
     }
     sweeps.push_back(expand_sweep(def, overrides));
   }
@@ -181,7 +181,9 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
       cmd.threads > 0 ? cmd.threads : static_cast<int>(std::thread::hardware_concurrency());
   info.elapsed = result.elapsed;
   std::vector<Setting> base;
-  if (!cmd.preset.empty()) base.push_back({"plume.preset", cmd.preset, true, "--preset"});
+  if (!cmd.preset.empty()) {
+    base.push_back({"plume.preset", cmd.preset, true, "--preset", Layer::kCommandLine});
+  }
   info.base_config = scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, base));
   write_exports(cmd.out, sweeps, rows, cmd.runs);
   write_text(cmd.out + "/summary.json", build_summary(sweeps, rows, info));

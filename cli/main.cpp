@@ -42,7 +42,8 @@ struct ScenarioOptions {
   pt::Scenario load() const {
     std::vector<pt::Setting> overrides;
     if (!algorithm.empty()) {
-      overrides.push_back({"controller.algorithm", algorithm, true, "--algorithm"});
+      overrides.push_back(
+          {"controller.algorithm", algorithm, true, "--algorithm", pt::Layer::kCommandLine});
     }
     for (const auto& s : sets) overrides.push_back(pt::parse_override(s));
     return pt::load_scenario(path, overrides);

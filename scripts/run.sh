@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
-# The main job: install, build, then one default run of each algorithm on the paper's setup.
+# The main job: install, build, then reproduce the paper's nine experiment sets (4050 runs plus
+# 750 for the sensitivity section) and write the report to out/report.html. Extra arguments go
+# to `plumetrace reproduce` (e.g. --runs 10, --out DIR, --preset paper-literal).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-for algorithm in casting surge-spiral surge-cast; do
-  ./build/plumetrace run scenarios/lochmatter2008.toml --algorithm "$algorithm" "$@"
-  echo
-done
+./build/plumetrace reproduce "$@"

@@ -27,24 +27,24 @@ using detail::value_to_json;
 using nlohmann::json;
 
 void flatten(const toml::table& table, const std::string& prefix, const std::string& path,
-             std::vector<Setting>& out) {
+             Layer layer, std::vector<Setting>& out) {
   for (const auto& [k, node] : table) {
     const std::string key = prefix + std::string(k.str());
     if (const auto* sub = node.as_table()) {
-      flatten(*sub, key + ".", path, out);
+      flatten(*sub, key + ".", path, layer, out);
     } else if (const auto* i = node.as_integer()) {
-      out.push_back({key, static_cast<std::int64_t>(i->get()), false, path});
+      out.push_back({key, static_cast<std::int64_t>(i->get()), false, path, layer});
     } else if (const auto* d = node.as_floating_point()) {
-      out.push_back({key, d->get(), false, path});
+      out.push_back({key, d->get(), false, path, layer});
     } else if (const auto* s = node.as_string()) {
-      out.push_back({key, s->get(), false, path});
+      out.push_back({key, s->get(), false, path, layer});
     } else if (const auto* b = node.as_boolean()) {
-      out.push_back({key, b->get(), false, path});
+      out.push_back({key, b->get(), false, path, layer});
     } else {
       // why: let the key's own check reject it, so the message names the key and its range
       // (or says the key is unknown)
       out.push_back(
-          {key, std::string(node.is_array() ? "<array>" : "<date or time>"), false, path});
+          {key, std::string(node.is_array() ? "<array>" : "<date or time>"), false, path, layer});
     }
   }
 }
@@ -91,7 +91,7 @@ std::string_view version() { return kVersion; }
 std::vector<Setting> read_scenario_file(const std::string& path) {
   const toml::table table = parse_toml_file(path, "scenario file");
   std::vector<Setting> settings;
-  flatten(table, "", path, settings);
+  flatten(table, "", path, Layer::kFile, settings);
   return settings;
 }
 
@@ -272,7 +272,7 @@ SweepDef read_sweep_file(const std::string& path) {
       if (seed < 0) fail("seed: must be an integer >= 0");
       def.seed = static_cast<std::uint64_t>(seed);
     } else if (key == "set" && node.is_table()) {
-      flatten(*node.as_table(), "", path + ": [set]", def.settings);
+      flatten(*node.as_table(), "", path + ": [set]", Layer::kSweep, def.settings);
     } else if (key == "axis" && node.is_array_of_tables()) {
       for (const auto& item : *node.as_array()) {
         Axis axis;

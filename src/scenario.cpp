@@ -332,7 +332,8 @@ Setting parse_override(std::string_view text) {
   if (eq == std::string_view::npos || eq == 0) {
     throw ConfigError("--set '" + std::string(text) + "': expected key.path=value");
   }
-  return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), true, "--set"};
+  return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), true, "--set",
+          Layer::kCommandLine};
 }
 
 namespace {
@@ -364,7 +365,14 @@ Scenario build_scenario(const std::vector<Setting>& settings) {
     apply(probe, *preset);
     scenario.plume = plume_preset(probe.plume.preset);
   }
-  for (const auto& s : settings) apply(scenario, s);
+  for (const auto& s : settings) {
+    // why: a preset chosen in a later layer (say a sweep's [set] on a full scenario file)
+    // replaces the plume rows that earlier layers wrote out
+    const bool overridden_row = preset && s.key != "plume.preset" &&
+                                s.key.rfind("plume.", 0) == 0 && s.layer < preset->layer;
+    if (overridden_row) continue;
+    apply(scenario, s);
+  }
   validate(scenario);
   return scenario;
 }

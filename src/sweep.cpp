@@ -53,7 +53,8 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
     for (std::size_t a = 0; a < def.axes.size(); ++a) {
       const ConfigValue& v = def.axes[a].values[index[a]];
       point.values.push_back(v);
-      settings.push_back({def.axes[a].key, v, false, where + ": axis " + def.axes[a].key});
+      settings.push_back(
+          {def.axes[a].key, v, false, where + ": axis " + def.axes[a].key, Layer::kAxis});
     }
     point.scenario = build_scenario(settings);
     point.config_hash = hash_text(scenario_to_toml(point.scenario));

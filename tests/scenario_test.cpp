@@ -51,6 +51,26 @@ TEST(Scenario, ExplicitRowsWinOverThePresetWhateverTheirOrder) {
   EXPECT_EQ(s.plume.noise_mode, NoiseMode::kPerStep);
 }
 
+TEST(Scenario, PresetInALaterLayerReplacesPlumeRowsOfEarlierLayers) {
+  // the default file writes out every plume row; a preset on the command line still applies
+  const Scenario s = load_scenario(kScenarios + "lochmatter2008.toml",
+                                   {parse_override("plume.preset=paper-literal")});
+  Scenario literal;
+  literal.plume = plume_preset(PlumePreset::kPaperLiteral);
+  EXPECT_EQ(scenario_to_toml(s), scenario_to_toml(literal));
+  // a row in the same layer as the preset, or a later one, still wins
+  const Scenario t = load_scenario(kScenarios + "lochmatter2008.toml",
+                                   {parse_override("plume.sigma_p=0.05"),
+                                    parse_override("plume.preset=paper-literal")});
+  EXPECT_EQ(t.plume.sigma_p, 0.05);
+  EXPECT_EQ(t.plume.kernel, Kernel::kPrinted);
+  // non-plume keys of earlier layers are untouched
+  const Scenario u = load_scenario(kScenarios + "lochmatter2008.toml",
+                                   {parse_override("plume.preset=paper-literal"),
+                                    parse_override("casting.beta_deg=30")});
+  EXPECT_DOUBLE_EQ(u.controller.casting.beta, kPi / 6.0);
+}
+
 TEST(Scenario, ResolvedTomlReadsBackToTheSameScenario) {
   const Scenario s = build_scenario({parse_override("plume.preset=paper-literal"),
                                      parse_override("casting.beta_deg=33.3"),

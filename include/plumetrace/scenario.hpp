@@ -126,6 +126,14 @@ std::string format_number(double value);
 /// Formats a config value for display.
 std::string format_value(const ConfigValue& value);
 
+/// Where a setting comes from; later layers override earlier ones.
+enum class Layer {
+  kFile,         ///< a scenario file
+  kSweep,        ///< a sweep file's [set] table
+  kCommandLine,  ///< --set, --algorithm, --preset
+  kAxis,         ///< a sweep axis value
+};
+
 /// One key = value setting, from a file (typed) or the command line (text to parse).
 struct Setting {
   /// Dotted key.
@@ -136,14 +144,18 @@ struct Setting {
   bool text = false;
   /// Where it came from, for error messages ("--set", a file name); may be empty.
   std::string origin;
+  /// Which layer it belongs to.
+  Layer layer = Layer::kCommandLine;
 };
 
 /// Splits a command-line "key.path=value"; throws ConfigError when there is no '='.
 Setting parse_override(std::string_view text);
 
 /// Builds a scenario from defaults and settings applied in order. A `plume.preset` setting (the
-/// last one wins) first resets every plume row to that preset; then every other setting is
-/// applied; finally the whole scenario is validated. Throws ConfigError naming the key.
+/// last one wins) resets every plume row to that preset: plume rows of earlier layers are
+/// dropped, rows of its own layer or later ones still win whatever their order. Every other
+/// setting is applied in order; finally the whole scenario is validated. Throws ConfigError
+/// naming the key.
 Scenario build_scenario(const std::vector<Setting>& settings);
 
 }  // namespace plumetrace

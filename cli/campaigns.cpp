@@ -137,6 +137,16 @@ int draw_report(const std::string& out) {
 
 }  // namespace
 
+void CampaignFlags::add_to(CLI::App& sub) {
+  sub.add_option("--threads", threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  sub.add_option("--out", out, "output folder: stores, summary and report (default: out)");
+  sub.add_option("--experiments", experiments,
+                 "folder of the sweep files (default: experiments/lochmatter2008)");
+  sub.add_flag("--quiet", quiet, "no progress bar");
+  sub.add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
+}
+
 CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
   auto* sub = app.add_subcommand(
       "reproduce", "run the paper's nine experiment sets and write the report (report.html)");
@@ -144,18 +154,12 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
                   "plume preset: lochmatter2008 (default) or paper-literal");
   sub->add_option("--runs", cmd.runs, "runs per value (default 50, as the paper)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--threads", cmd.threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--out", cmd.out, "output folder: store, summary and report (default: out)");
-  sub->add_option("--experiments", cmd.experiments,
-                  "folder of the sweep files (default: experiments/lochmatter2008)");
-  sub->add_flag("--quiet", cmd.quiet, "no progress bar");
-  sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
+  cmd.flags.add_to(*sub);
   return sub;
 }
 
 int run_reproduce_command(const ReproduceCommand& cmd) {
-  const std::string dir = experiments_dir(cmd.experiments);
+  const std::string dir = experiments_dir(cmd.flags.experiments);
   std::vector<ExpandedSweep> sweeps;
   for (const auto& def : read_sets(dir, true)) {
     // the preset applies to every sweep that does not choose its own (the literal one does)
@@ -165,10 +169,12 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
     }
     sweeps.push_back(expand_sweep(def, overrides));
   }
-  std::filesystem::create_directories(cmd.out);
-  Store store(cmd.out + "/results.sqlite", campaign_definition(sweeps), version(), cmd.fresh);
+  std::filesystem::create_directories(cmd.flags.out);
+  Store store(cmd.flags.out + "/results.sqlite", campaign_definition(sweeps), version(),
+              cmd.flags.fresh);
   CampaignResult result;
-  if (!run_with_progress("reproduce", sweeps, store, cmd.runs, cmd.threads, cmd.quiet, result)) {
+  if (!run_with_progress("reproduce", sweeps, store, cmd.runs, cmd.flags.threads, cmd.flags.quiet,
+                         result)) {
     return kInterrupted;
   }
   const auto rows = store.rows();
@@ -177,22 +183,22 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
   info.command = cmd.command_line;
   info.preset = cmd.preset.empty() ? "lochmatter2008" : cmd.preset;
   info.runs_override = cmd.runs;
-  info.threads =
-      cmd.threads > 0 ? cmd.threads : static_cast<int>(std::thread::hardware_concurrency());
+  info.threads = cmd.flags.threads > 0 ? cmd.flags.threads
+                                       : static_cast<int>(std::thread::hardware_concurrency());
   info.elapsed = result.elapsed;
   std::vector<Setting> base;
   if (!cmd.preset.empty()) {
     base.push_back({"plume.preset", cmd.preset, true, "--preset", Layer::kCommandLine});
   }
   info.base_config = scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, base));
-  write_exports(cmd.out, sweeps, rows, cmd.runs);
-  write_text(cmd.out + "/summary.json", build_summary(sweeps, rows, info));
-  if (const int rc = draw_report(cmd.out)) return rc;
+  write_exports(cmd.flags.out, sweeps, rows, cmd.runs);
+  write_text(cmd.flags.out + "/summary.json", build_summary(sweeps, rows, info));
+  if (const int rc = draw_report(cmd.flags.out)) return rc;
   std::printf(
       "%lld runs (%lld computed now in %.1f s, %lld from the store)\nreport: %s/report.html "
       "(and report.md)\n",
       static_cast<long long>(result.total), static_cast<long long>(result.computed), result.elapsed,
-      static_cast<long long>(result.skipped), cmd.out.c_str());
+      static_cast<long long>(result.skipped), cmd.flags.out.c_str());
   return 0;
 }
 
@@ -201,35 +207,32 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityCommand& cmd) {
       "sensitivity",
       "rerun the nine sets under every noise mode, kernel and success radius; claims matrix");
   sub->add_option("--runs", cmd.runs, "runs per value (default 10)")->check(CLI::PositiveNumber);
-  sub->add_option("--threads", cmd.threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--out", cmd.out, "output folder (default: out, beside reproduce's report)");
-  sub->add_option("--experiments", cmd.experiments,
-                  "folder of the sweep files (default: experiments/lochmatter2008)");
-  sub->add_flag("--quiet", cmd.quiet, "no progress bar");
-  sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
+  cmd.flags.add_to(*sub);
   return sub;
 }
 
 int run_sensitivity_command(const SensitivityCommand& cmd) {
   std::vector<ExpandedSweep> sweeps;
   for (const auto& def :
-       sensitivity_sweeps(read_sets(experiments_dir(cmd.experiments), false), cmd.runs)) {
+       sensitivity_sweeps(read_sets(experiments_dir(cmd.flags.experiments), false), cmd.runs)) {
     sweeps.push_back(expand_sweep(def, {}));
   }
-  std::filesystem::create_directories(cmd.out);
-  Store store(cmd.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(), cmd.fresh);
+  std::filesystem::create_directories(cmd.flags.out);
+  Store store(cmd.flags.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(),
+              cmd.flags.fresh);
   CampaignResult result;
-  if (!run_with_progress("sensitivity", sweeps, store, cmd.runs, cmd.threads, cmd.quiet, result)) {
+  if (!run_with_progress("sensitivity", sweeps, store, cmd.runs, cmd.flags.threads, cmd.flags.quiet,
+                         result)) {
     return kInterrupted;
   }
   const auto matrix = sensitivity_matrix(sweeps, store.rows(), cmd.runs);
-  write_text(cmd.out + "/sensitivity.json", sensitivity_json(matrix, cmd.runs, result.elapsed));
+  write_text(cmd.flags.out + "/sensitivity.json",
+             sensitivity_json(matrix, cmd.runs, result.elapsed));
   const std::string md = sensitivity_markdown(matrix, cmd.runs, result.elapsed);
-  write_text(cmd.out + "/sensitivity.md", md);
+  write_text(cmd.flags.out + "/sensitivity.md", md);
   std::fputs(md.c_str(), stdout);
   // a report already in the folder gains the matrix
-  if (std::filesystem::exists(cmd.out + "/summary.json")) return draw_report(cmd.out);
+  if (std::filesystem::exists(cmd.flags.out + "/summary.json")) return draw_report(cmd.flags.out);
   return 0;
 }
 

@@ -37,15 +37,23 @@ CLI::App* add_export_command(CLI::App& app, ExportCommand& cmd);
 /// Runs it; returns the exit code.
 int run_export_command(const ExportCommand& cmd);
 
-/// `plumetrace reproduce ...`
-struct ReproduceCommand {
-  std::string preset;
-  int runs = 0;
+/// Flags shared by `reproduce` and `sensitivity`.
+struct CampaignFlags {
   int threads = 0;
   std::string out = "out";
   std::string experiments;
   bool quiet = false;
   bool fresh = false;
+
+  /// Registers the flags on a subcommand.
+  void add_to(CLI::App& sub);
+};
+
+/// `plumetrace reproduce ...`
+struct ReproduceCommand {
+  std::string preset;
+  int runs = 0;
+  CampaignFlags flags;
   std::string command_line;
 };
 
@@ -57,11 +65,7 @@ int run_reproduce_command(const ReproduceCommand& cmd);
 /// `plumetrace sensitivity ...`
 struct SensitivityCommand {
   int runs = 10;
-  int threads = 0;
-  std::string out = "out";
-  std::string experiments;
-  bool quiet = false;
-  bool fresh = false;
+  CampaignFlags flags;
 };
 
 /// Registers `sensitivity` on the app.

@@ -205,6 +205,20 @@ Interval newcombe_difference(std::int64_t successes1, std::int64_t n1, std::int6
   return {std::max(-1.0, lo), std::min(1.0, hi)};
 }
 
+namespace {
+
+// fills the standard deviation and the t interval from the sum of squared deviations
+MeanCi with_t_interval(MeanCi out, double ss, double level) {
+  out.stddev = std::sqrt(ss / static_cast<double>(out.n - 1));
+  const double t = student_t_quantile(0.5 * (1.0 + level), static_cast<double>(out.n - 1));
+  const double half = t * out.stddev / std::sqrt(static_cast<double>(out.n));
+  out.lo = out.mean - half;
+  out.hi = out.mean + half;
+  return out;
+}
+
+}  // namespace
+
 MeanCi mean_ci(std::span<const double> values, double level) {
   MeanCi out;
   double sum = 0.0;
@@ -220,12 +234,7 @@ MeanCi mean_ci(std::span<const double> values, double level) {
   for (double v : values) {
     if (!std::isnan(v)) ss += (v - out.mean) * (v - out.mean);
   }
-  out.stddev = std::sqrt(ss / static_cast<double>(out.n - 1));
-  const double t = student_t_quantile(0.5 * (1.0 + level), static_cast<double>(out.n - 1));
-  const double half = t * out.stddev / std::sqrt(static_cast<double>(out.n));
-  out.lo = out.mean - half;
-  out.hi = out.mean + half;
-  return out;
+  return with_t_interval(out, ss, level);
 }
 
 MeanCi pooled_mean_ci(std::span<const MeanCi> parts, double level) {
@@ -247,12 +256,7 @@ MeanCi pooled_mean_ci(std::span<const MeanCi> parts, double level) {
     if (part.n >= 2) ss += (nn - 1.0) * part.stddev * part.stddev;
     ss += nn * (part.mean - out.mean) * (part.mean - out.mean);
   }
-  out.stddev = std::sqrt(ss / static_cast<double>(out.n - 1));
-  const double t = student_t_quantile(0.5 * (1.0 + level), static_cast<double>(out.n - 1));
-  const double half = t * out.stddev / std::sqrt(static_cast<double>(out.n));
-  out.lo = out.mean - half;
-  out.hi = out.mean + half;
-  return out;
+  return with_t_interval(out, ss, level);
 }
 
 Interval welch_difference(const MeanCi& a, const MeanCi& b, double level) {

@@ -145,6 +145,36 @@ TEST(SweepFile, OverrideOfAnAxisKeyIsRejected) {
   EXPECT_NE(changed.points[0].config_hash, expand_sweep(def, {}).points[0].config_hash);
 }
 
+TEST(Experiments, TheNineSetsHold4050RunsWithTheirFixedValues) {
+  const std::string dir = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008/";
+  int total = 0;
+  for (const char* name : {"A", "B", "C", "D", "E", "F", "G", "H", "I"}) {
+    const ExpandedSweep sweep = expand_sweep(read_sweep_file(dir + name + ".toml"), {});
+    ASSERT_EQ(sweep.def.axes.size(), 1u) << name;
+    EXPECT_EQ(sweep.points.size(), 9u) << name;
+    EXPECT_TRUE(sweep.def.axes[0].fixed.has_value()) << name;
+    total += static_cast<int>(sweep.points.size()) * sweep.def.runs;
+    // every point is the paper's default setup but for the algorithm and the varied key
+    const Scenario& p = sweep.points[0].scenario;
+    EXPECT_EQ(p.plume.preset, PlumePreset::kLochmatter2008) << name;
+    EXPECT_EQ(p.robot.start.x, 15.5) << name;
+  }
+  EXPECT_EQ(total, 4050);
+}
+
+TEST(Experiments, TheLiteralSweepReallyRunsThePaperLiteralPlume) {
+  const std::string dir = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008/";
+  const ExpandedSweep sweep = expand_sweep(read_sweep_file(dir + "literal.toml"), {});
+  Scenario literal;
+  literal.plume = plume_preset(PlumePreset::kPaperLiteral);
+  for (const auto& p : sweep.points) {
+    EXPECT_EQ(p.scenario.plume.kernel, Kernel::kPrinted);
+    EXPECT_EQ(p.scenario.plume.noise_mode, NoiseMode::kPerStep);
+    EXPECT_EQ(p.scenario.plume.lifetime, Lifetime::kLeaveArena);
+    EXPECT_EQ(p.scenario.plume.release_shape, ReleaseShape::kDisc);
+  }
+}
+
 TEST(Campaign, OneAndTwoThreadsGiveIdenticalRows) {
   const auto sweeps = quick();
   expect_same_rows(run_fresh(sweeps, 1), run_fresh(sweeps, 2));

@@ -1,0 +1,68 @@
+// Google Benchmark cases: one plume step, one concentration query, one whole run per algorithm.
+#include <benchmark/benchmark.h>
+
+#include "plumetrace/plume.hpp"
+#include "plumetrace/scenario.hpp"
+#include "plumetrace/world.hpp"
+
+namespace plumetrace {
+namespace {
+
+// a default plume after its 20 s warm-up: 1600 filaments
+Plume warm_plume(const Scenario& s, const WindField& wind) {
+  Plume plume(s.plume, s.source, s.sim.dt, s.arena.x_max, derive_seed(1, 0, Stream::kPlume));
+  for (int i = 0; i < 625; ++i) plume.step(wind, i * s.sim.dt);
+  return plume;
+}
+
+void BM_PlumeStep(benchmark::State& state) {
+  const Scenario s;
+  const auto wind = make_wind_field(s.wind);
+  Plume plume = warm_plume(s, *wind);
+  double t = 20.0;
+  for (auto _ : state) {
+    plume.step(*wind, t);
+    t += s.sim.dt;
+  }
+  // reported per filament-step
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(plume.size()));
+  // shown as seconds per filament-step ("3.1n" = 3.1 ns)
+  state.counters["per_filament_step"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * static_cast<double>(plume.size()),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_PlumeStep);
+
+void BM_ConcentrationQuery(benchmark::State& state) {
+  const Scenario s;
+  const auto wind = make_wind_field(s.wind);
+  const Plume plume = warm_plume(s, *wind);
+  // points along and across the corridor, as a robot meets them
+  const Vec3 points[] = {{15.5, 0.0, 0.0}, {8.0, 0.3, 0.0}, {2.0, -0.5, 0.0}, {8.0, 1.5, 0.0}};
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    sum += plume.concentration(points[i++ & 3]);
+  }
+  benchmark::DoNotOptimize(sum);
+}
+BENCHMARK(BM_ConcentrationQuery);
+
+void BM_WholeRun(benchmark::State& state) {
+  Scenario s;
+  s.controller.algorithm = all_algorithms()[static_cast<std::size_t>(state.range(0))];
+  state.SetLabel(std::string(algorithm_name(s.controller.algorithm)));
+  std::uint64_t trial = 0;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    steps += run_once(s, 1, trial++ % 8).steps;
+  }
+  state.counters["steps_per_run"] =
+      static_cast<double>(steps) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_WholeRun)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace plumetrace
+
+BENCHMARK_MAIN();

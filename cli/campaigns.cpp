@@ -102,11 +102,12 @@ void write_text(const std::string& path, const std::string& text) {
 
 // runs the campaign with a progress bar; false when interrupted (after saying so)
 bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep>& sweeps,
-                       Store& store, int runs, int threads, bool quiet, CampaignResult& result) {
+                       Store& store, int runs, const CampaignFlags& flags, CampaignResult& result) {
   install_stop_handlers();
-  ProgressBar bar(label, !quiet && stderr_is_terminal());
+  ProgressBar bar(label, !flags.quiet && stderr_is_terminal());
   CampaignOptions options;
-  options.threads = threads;
+  options.threads = flags.threads;
+  options.share_plumes = !flags.no_share;
   options.stop = &g_stop;
   options.on_progress = [&](const Progress& p) { bar.update(p); };
   result = run_campaign(sweeps, store, runs, options);
@@ -145,6 +146,8 @@ void CampaignFlags::add_to(CLI::App& sub) {
                  "folder of the sweep files (default: experiments/lochmatter2008)");
   sub.add_flag("--quiet", quiet, "no progress bar");
   sub.add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
+  sub.add_flag("--no-share-plumes", no_share,
+               "simulate the plume anew for every run (same results, slower)");
 }
 
 CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
@@ -173,8 +176,7 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
   Store store(cmd.flags.out + "/results.sqlite", campaign_definition(sweeps), version(),
               cmd.flags.fresh);
   CampaignResult result;
-  if (!run_with_progress("reproduce", sweeps, store, cmd.runs, cmd.flags.threads, cmd.flags.quiet,
-                         result)) {
+  if (!run_with_progress("reproduce", sweeps, store, cmd.runs, cmd.flags, result)) {
     return kInterrupted;
   }
   const auto rows = store.rows();
@@ -221,8 +223,7 @@ int run_sensitivity_command(const SensitivityCommand& cmd) {
   Store store(cmd.flags.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(),
               cmd.flags.fresh);
   CampaignResult result;
-  if (!run_with_progress("sensitivity", sweeps, store, cmd.runs, cmd.flags.threads, cmd.flags.quiet,
-                         result)) {
+  if (!run_with_progress("sensitivity", sweeps, store, cmd.runs, cmd.flags, result)) {
     return kInterrupted;
   }
   const auto matrix = sensitivity_matrix(sweeps, store.rows(), cmd.runs);
@@ -249,6 +250,8 @@ CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
       ->allow_extra_args(false);
   sub->add_flag("--quiet", cmd.quiet, "no progress bar");
   sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
+  sub->add_flag("--no-share-plumes", cmd.no_share,
+                "simulate the plume anew for every run (same results, slower)");
   return sub;
 }
 
@@ -260,21 +263,12 @@ int run_sweep_command(const SweepCommand& cmd) {
   const std::string store_path = cmd.store.empty() ? out + "/results.sqlite" : cmd.store;
 
   Store store(store_path, campaign_definition(sweeps), version(), cmd.fresh);
-  install_stop_handlers();
-  ProgressBar bar("sweep " + def.name, !cmd.quiet && stderr_is_terminal());
-  CampaignOptions options;
-  options.threads = cmd.threads;
-  options.stop = &g_stop;
-  options.on_progress = [&](const Progress& p) { bar.update(p); };
-  const CampaignResult result = run_campaign(sweeps, store, cmd.runs, options);
-  bar.finish();
-
-  if (result.interrupted) {
-    std::fprintf(stderr,
-                 "plumetrace: interrupted: %lld of %lld runs are in '%s'; run the same command "
-                 "again to compute the rest\n",
-                 static_cast<long long>(result.skipped + result.computed),
-                 static_cast<long long>(result.total), store_path.c_str());
+  CampaignFlags flags;
+  flags.threads = cmd.threads;
+  flags.quiet = cmd.quiet;
+  flags.no_share = cmd.no_share;
+  CampaignResult result;
+  if (!run_with_progress("sweep " + def.name, sweeps, store, cmd.runs, flags, result)) {
     return kInterrupted;
   }
   const auto rows = store.rows();

@@ -16,6 +16,7 @@ struct SweepCommand {
   std::vector<std::string> sets;
   bool quiet = false;
   bool fresh = false;
+  bool no_share = false;
 };
 
 /// Registers `sweep` on the app.
@@ -44,6 +45,7 @@ struct CampaignFlags {
   std::string experiments;
   bool quiet = false;
   bool fresh = false;
+  bool no_share = false;
 
   /// Registers the flags on a subcommand.
   void add_to(CLI::App& sub);

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <map>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include "plumetrace/io.hpp"
@@ -63,6 +65,96 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
   return out;
 }
 
+std::string plume_key(const Scenario& scenario) {
+  // everything the plume depends on, and nothing else
+  Scenario p;
+  p.sim = scenario.sim;
+  p.source = scenario.source;
+  p.wind = scenario.wind;
+  p.plume = scenario.plume;
+  p.arena.x_max = scenario.arena.x_max;
+  return hash_text(scenario_to_toml(p));
+}
+
+std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
+                                  std::uint64_t trial) {
+  std::vector<RunResult> results;
+  if (scenarios.empty()) return results;
+  const Scenario& first = *scenarios.front();
+  const std::string key = plume_key(first);
+  std::vector<std::unique_ptr<Agent>> agents;
+  for (const Scenario* s : scenarios) {
+    if (plume_key(*s) != key) {
+      throw std::invalid_argument("run_shared: the scenarios do not share one plume");
+    }
+    agents.push_back(std::make_unique<Agent>(
+        *s, seed, trial,
+        make_controller(s->controller, Rng(derive_seed(seed, trial, Stream::kController)))));
+  }
+  const auto wind = make_wind_field(first.wind);
+  Plume plume = make_plume(first, seed, trial);
+  const double warmup_time = warm_up(first, *wind, plume);
+  for (auto& a : agents) a->release(plume, warmup_time);
+
+  // lockstep: one plume step, then every agent still running takes its step on it
+  std::size_t running = agents.size();
+  for (std::int64_t k = 0; running > 0; ++k) {
+    running = 0;
+    for (const auto& a : agents) running += !a->done();
+    if (running == 0) break;
+    plume.step(*wind, warmup_time + static_cast<double>(k) * first.sim.dt);
+    for (auto& a : agents) a->step(plume);
+  }
+  for (const auto& a : agents) results.push_back(a->result());
+  return results;
+}
+
+namespace {
+
+// Work units: groups of tasks that meet the same plume (the same plume configuration, master
+// seed and trial), or single tasks when sharing is off. Deterministic, in task order.
+std::vector<std::vector<std::size_t>> work_units(const std::vector<ExpandedSweep>& sweeps,
+                                                 const std::vector<RunTask>& tasks, bool share,
+                                                 int threads) {
+  std::vector<std::vector<std::size_t>> units;
+  if (!share) {
+    for (std::size_t i = 0; i < tasks.size(); ++i) units.push_back({i});
+    return units;
+  }
+  std::map<std::pair<int, int>, std::string> point_keys;
+  std::map<std::string, std::size_t> unit_of;
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    const RunTask& t = tasks[i];
+    const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(t.sweep)];
+    auto [it, fresh] = point_keys.try_emplace({t.sweep, t.point});
+    if (fresh) {
+      it->second = plume_key(sweep.points[static_cast<std::size_t>(t.point)].scenario);
+    }
+    const std::string key =
+        it->second + "/" + std::to_string(sweep.def.seed) + "/" + std::to_string(t.trial);
+    auto [u, added] = unit_of.try_emplace(key, units.size());
+    if (added) units.emplace_back();
+    units[u->second].push_back(i);
+  }
+  // why: too few plumes for the threads (a sweep of few trials) - split groups so every core
+  // works; each part simulates the plume again, with the same result
+  const std::size_t wanted = 2 * static_cast<std::size_t>(threads);
+  if (units.empty() || units.size() >= wanted) return units;
+  const std::size_t parts = (wanted + units.size() - 1) / units.size();
+  std::vector<std::vector<std::size_t>> split;
+  for (const auto& unit : units) {
+    const std::size_t size = (unit.size() + parts - 1) / parts;
+    for (std::size_t at = 0; at < unit.size(); at += size) {
+      split.emplace_back(
+          unit.begin() + static_cast<std::ptrdiff_t>(at),
+          unit.begin() + static_cast<std::ptrdiff_t>(std::min(at + size, unit.size())));
+    }
+  }
+  return split;
+}
+
+}  // namespace
+
 CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                          const std::vector<RunTask>& tasks, const CampaignOptions& options,
                          const RowSink& sink) {
@@ -74,7 +166,9 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
-  // workers take the next task index; finished rows wait in `pending` for the calling thread
+  const auto units = work_units(sweeps, tasks, options.share_plumes, threads);
+
+  // workers take the next unit; finished rows wait in `pending` for the calling thread
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
   std::condition_variable wake;
@@ -86,15 +180,29 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
   auto work = [&] {
     for (;;) {
       if (stopped()) break;
-      const std::size_t i = next.fetch_add(1);
-      if (i >= tasks.size()) break;
-      const RunTask& t = tasks[i];
-      const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(t.sweep)];
-      const SweepPoint& point = sweep.points[static_cast<std::size_t>(t.point)];
-      RunRow row{sweep.def.name, point.index, t.trial, point.config_hash,
-                 run_once(point.scenario, sweep.def.seed, t.trial)};
+      const std::size_t u = next.fetch_add(1);
+      if (u >= units.size()) break;
+      std::vector<const Scenario*> scenarios;
+      for (const std::size_t i : units[u]) {
+        const RunTask& t = tasks[i];
+        scenarios.push_back(&sweeps[static_cast<std::size_t>(t.sweep)]
+                                 .points[static_cast<std::size_t>(t.point)]
+                                 .scenario);
+      }
+      const RunTask& first = tasks[units[u].front()];
+      const std::uint64_t seed = sweeps[static_cast<std::size_t>(first.sweep)].def.seed;
+      const std::vector<RunResult> results =
+          scenarios.size() == 1 ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial)}
+                                : run_shared(scenarios, seed, first.trial);
+      std::vector<RunRow> rows;
+      for (std::size_t k = 0; k < results.size(); ++k) {
+        const RunTask& t = tasks[units[u][k]];
+        const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(t.sweep)];
+        const SweepPoint& point = sweep.points[static_cast<std::size_t>(t.point)];
+        rows.push_back({sweep.def.name, point.index, t.trial, point.config_hash, results[k]});
+      }
       std::lock_guard lock(mutex);
-      pending.push_back(std::move(row));
+      for (auto& row : rows) pending.push_back(std::move(row));
     }
     std::lock_guard lock(mutex);
     --running;

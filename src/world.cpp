@@ -35,48 +35,31 @@ Outcome supervise(const Scenario& scenario, const RobotState& robot, double t) {
   return Outcome::kRunning;
 }
 
-World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial)
-    : World(scenario, seed, trial,
-            make_controller(scenario.controller,
-                            Rng(derive_seed(seed, trial, Stream::kController)))) {}
-
-World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+Agent::Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
              std::unique_ptr<Controller> controller)
     : scenario_(scenario),
       seed_(seed),
       trial_(trial),
       wind_(make_wind_field(scenario.wind)),
-      plume_(scenario.plume, scenario.source, scenario.sim.dt, scenario.arena.x_max,
-             derive_seed(seed, trial, Stream::kPlume)),
       robot_{scenario.robot.start, 0.0},
       wind_rng_(derive_seed(seed, trial, Stream::kWindSensor)),
       wind_sensor_(scenario_.wind_sensor, *wind_, robot_.pose, scenario_.odor.height, wind_rng_),
-      controller_(std::move(controller)) {
-  warm_up();
-}
+      controller_(std::move(controller)) {}
 
-void World::warm_up() {
-  const auto steps =
-      static_cast<std::int64_t>(std::llround(scenario_.sim.warmup / scenario_.sim.dt));
-  for (std::int64_t i = 0; i < steps; ++i) {
-    plume_.step(*wind_, static_cast<double>(i) * scenario_.sim.dt);
-  }
-  warmup_time_ = static_cast<double>(steps) * scenario_.sim.dt;
+void Agent::release(const Plume& plume, double warmup_time) {
+  warmup_time_ = warmup_time;
   // what the sensor reads at release (for traces; the controller first senses after one step)
-  concentration_ = sense_concentration(scenario_.odor, plume_, robot_.pose);
+  concentration_ = sense_concentration(scenario_.odor, plume, robot_.pose);
   odor_ = perceives_odor(scenario_.odor, concentration_);
 }
 
-void World::step() {
+void Agent::step(const Plume& plume) {
   if (done()) return;
   const double dt = scenario_.sim.dt;
-
-  // environment: filaments move, then new ones are released
-  plume_.step(*wind_, plume_time());
   ++steps_;
 
   // sense
-  concentration_ = sense_concentration(scenario_.odor, plume_, robot_.pose);
+  concentration_ = sense_concentration(scenario_.odor, plume, robot_.pose);
   odor_ = perceives_odor(scenario_.odor, concentration_);
   if (odor_) ++odor_steps_;
   // why: odometry starts at the release pose, so a controller cannot read the arena's frame
@@ -100,7 +83,7 @@ void World::step() {
   outcome_ = supervise(scenario_, robot_, time());
 }
 
-RunResult World::result() const {
+RunResult Agent::result() const {
   RunResult r;
   r.outcome = outcome_;
   r.time = time();
@@ -115,6 +98,40 @@ RunResult World::result() const {
   r.seed = seed_;
   r.trial = trial_;
   return r;
+}
+
+Plume make_plume(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
+  return Plume(scenario.plume, scenario.source, scenario.sim.dt, scenario.arena.x_max,
+               derive_seed(seed, trial, Stream::kPlume));
+}
+
+double warm_up(const Scenario& scenario, const WindField& wind, Plume& plume) {
+  const auto steps = static_cast<std::int64_t>(std::llround(scenario.sim.warmup / scenario.sim.dt));
+  for (std::int64_t i = 0; i < steps; ++i) {
+    plume.step(wind, static_cast<double>(i) * scenario.sim.dt);
+  }
+  return static_cast<double>(steps) * scenario.sim.dt;
+}
+
+World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial)
+    : World(scenario, seed, trial,
+            make_controller(scenario.controller,
+                            Rng(derive_seed(seed, trial, Stream::kController)))) {}
+
+World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+             std::unique_ptr<Controller> controller)
+    : wind_(make_wind_field(scenario.wind)),
+      plume_(make_plume(scenario, seed, trial)),
+      agent_(scenario, seed, trial, std::move(controller)) {
+  agent_.release(plume_, warm_up(scenario, *wind_, plume_));
+}
+
+void World::step() {
+  if (done()) return;
+  // environment: filaments move, then new ones are released
+  plume_.step(*wind_, agent_.plume_time());
+  // the robot: sense, decide, move, check
+  agent_.step(plume_);
 }
 
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,

@@ -75,11 +75,13 @@ void expect_same_rows(const std::vector<RunRow>& a, const std::vector<RunRow>& b
   }
 }
 
-std::vector<RunRow> run_fresh(const std::vector<ExpandedSweep>& sweeps, int threads) {
+std::vector<RunRow> run_fresh(const std::vector<ExpandedSweep>& sweeps, int threads,
+                              bool share = true) {
   Store store(testing::temp_path("store", ".sqlite"), campaign_definition(sweeps), version(),
               false);
   CampaignOptions options;
   options.threads = threads;
+  options.share_plumes = share;
   const CampaignResult r = run_campaign(sweeps, store, 0, options);
   EXPECT_FALSE(r.interrupted);
   EXPECT_EQ(r.computed, 24);
@@ -178,6 +180,56 @@ TEST(Experiments, TheLiteralSweepReallyRunsThePaperLiteralPlume) {
 TEST(Campaign, OneAndTwoThreadsGiveIdenticalRows) {
   const auto sweeps = quick();
   expect_same_rows(run_fresh(sweeps, 1), run_fresh(sweeps, 2));
+}
+
+TEST(SharedPlume, AgentsOnOnePlumeEqualSeparateRunsBitForBit) {
+  // robots as different as can be, on the paper's plume: algorithms, noise, radii, starts
+  std::vector<Scenario> scenarios(6);
+  scenarios[0].controller.algorithm = Algorithm::kCasting;
+  scenarios[1].controller.algorithm = Algorithm::kSurgeSpiral;
+  scenarios[2].controller.algorithm = Algorithm::kSurgeCast;
+  scenarios[3].controller.algorithm = Algorithm::kSurgeSpiral;
+  scenarios[3].wind_sensor.sigma_a = 0.5;
+  scenarios[3].supervisor.success_radius = 0.6;
+  scenarios[4].controller.algorithm = Algorithm::kSurgeCast;
+  scenarios[4].robot.start.x = 6.0;
+  scenarios[4].controller.surge_cast.d_cast = 0.1;
+  scenarios[5].controller.algorithm = Algorithm::kCasting;
+  scenarios[5].supervisor.timeout = 30.0;  // ends long before the others
+  std::vector<const Scenario*> group;
+  for (const auto& s : scenarios) group.push_back(&s);
+  for (std::uint64_t trial = 0; trial < 3; ++trial) {
+    const auto shared = run_shared(group, 9, trial);
+    ASSERT_EQ(shared.size(), scenarios.size());
+    for (std::size_t i = 0; i < scenarios.size(); ++i) {
+      const RunResult alone = run_once(scenarios[i], 9, trial);
+      EXPECT_EQ(shared[i].outcome, alone.outcome) << i;
+      EXPECT_EQ(shared[i].steps, alone.steps) << i;
+      EXPECT_EQ(shared[i].d_t, alone.d_t) << i;
+      EXPECT_EQ(shared[i].d_u, alone.d_u) << i;
+      EXPECT_EQ(shared[i].losses, alone.losses) << i;
+      EXPECT_EQ(shared[i].odor_fraction, alone.odor_fraction) << i;
+      EXPECT_EQ(shared[i].wind_samples, alone.wind_samples) << i;
+    }
+  }
+}
+
+TEST(SharedPlume, ScenariosWithDifferentPlumesAreRefused) {
+  Scenario a, b;
+  b.plume.sigma_p = 0.2;
+  EXPECT_NE(plume_key(a), plume_key(b));
+  b = a;
+  b.controller.algorithm = Algorithm::kSurgeCast;
+  b.wind_sensor.sigma_a = 0.7;
+  EXPECT_EQ(plume_key(a), plume_key(b));  // robot-side keys do not change the plume
+  b.plume.sigma_p = 0.2;
+  EXPECT_THROW(run_shared({&a, &b}, 1, 0), std::invalid_argument);
+}
+
+TEST(Campaign, SharedAndSeparatePlumesGiveIdenticalRows) {
+  const auto sweeps = quick();
+  expect_same_rows(run_fresh(sweeps, 2, true), run_fresh(sweeps, 2, false));
+  expect_same_rows(run_fresh(sweeps, 1, true), run_fresh(sweeps, 1, false));
 }
 
 TEST(Campaign, RowsEqualSingleRunsOfTheSameSeedAndTrial) {

@@ -69,6 +69,16 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
 /// FNV-1a 64-bit hash of a text, as 16 hex digits.
 std::string hash_text(const std::string& text);
 
+/// What identifies a plume: every config key it depends on, hashed (runs whose scenarios share
+/// this key and whose (seed, trial) match meet bit for bit the same plume).
+std::string plume_key(const Scenario& scenario);
+
+/// Runs several agents on one shared plume (SPEC section 9: the plume does not depend on the
+/// robot); every scenario must have the same plume_key. The results equal run_once of each
+/// scenario, bit for bit.
+std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
+                                  std::uint64_t trial);
+
 /// One run of a campaign and its result.
 struct RunRow {
   std::string sweep;        ///< sweep name
@@ -95,6 +105,9 @@ struct CampaignOptions {
   std::function<void(const Progress&)> on_progress;
   /// Seconds between progress calls and between store commits.
   double progress_interval = 0.25;
+  /// Simulate one plume per (plume configuration, seed, trial) and drive every robot that uses
+  /// it on it (results are bit-identical to separate runs; only faster).
+  bool share_plumes = true;
 };
 
 /// What a campaign call did.

@@ -3,7 +3,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "plumetrace/controller.hpp"
 #include "plumetrace/plume.hpp"
@@ -49,33 +51,31 @@ struct RunResult {
 /// The supervisor's verdict on a robot state at run time t (s): success, wall, timeout or running.
 Outcome supervise(const Scenario& scenario, const RobotState& robot, double t);
 
-/// One run's whole state. A fresh World per run; it is neither copied nor moved.
-class World {
+/// The robot side of one run: robot, sensors, controller and metrics, driven by a plume that
+/// is stepped outside it. Robots do not disturb the plume, so several Agents can share one.
+class Agent {
  public:
-  /// A run of the scenario's algorithm, warmed up and ready for its first step; random streams
-  /// from (seed, trial).
-  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
-  /// A run driven by a given controller (the extension point for custom algorithms), warmed up.
-  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+  /// An agent of the scenario with its random streams from (seed, trial), at its start pose.
+  Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
         std::unique_ptr<Controller> controller);
-  World(const World&) = delete;
-  World& operator=(const World&) = delete;
+  Agent(const Agent&) = delete;
+  Agent& operator=(const Agent&) = delete;
 
-  /// One step: environment, sense, decide, move, check (SPEC section 2).
-  void step();
+  /// Releases the robot into a plume warmed up for `warmup_time` seconds.
+  void release(const Plume& plume, double warmup_time);
+  /// One step after the plume has made its own: sense, decide, move, check (SPEC section 2).
+  void step(const Plume& plume);
+  /// Plume time (s) at which the plume's next step starts.
+  double plume_time() const { return warmup_time_ + time(); }
+
   /// True once the run has ended.
   bool done() const { return outcome_ != Outcome::kRunning; }
   /// The run's metrics so far.
   RunResult result() const;
-
   /// Time since release (s).
   double time() const { return static_cast<double>(steps_) * scenario_.sim.dt; }
   /// The scenario in use.
   const Scenario& scenario() const { return scenario_; }
-  /// The plume.
-  const Plume& plume() const { return plume_; }
-  /// The wind field.
-  const WindField& wind() const { return *wind_; }
   /// The robot's true state.
   const RobotState& robot() const { return robot_; }
   /// The controller.
@@ -90,14 +90,10 @@ class World {
   Outcome outcome() const { return outcome_; }
 
  private:
-  void warm_up();
-  double plume_time() const { return warmup_time_ + time(); }
-
   Scenario scenario_;
   std::uint64_t seed_;
   std::uint64_t trial_;
   std::unique_ptr<WindField> wind_;
-  Plume plume_;
   RobotState robot_;
   Rng wind_rng_;
   WindSensor wind_sensor_;
@@ -108,6 +104,59 @@ class World {
   double concentration_ = 0.0;
   bool odor_ = false;
   Outcome outcome_ = Outcome::kRunning;
+};
+
+/// The plume of a scenario and trial, before its warm-up.
+Plume make_plume(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
+
+/// Runs a plume alone for the scenario's warm-up; returns the warm-up time (s).
+double warm_up(const Scenario& scenario, const WindField& wind, Plume& plume);
+
+/// One run's whole state: a plume and one agent. A fresh World per run; it is neither copied
+/// nor moved.
+class World {
+ public:
+  /// A run of the scenario's algorithm, warmed up and ready for its first step; random streams
+  /// from (seed, trial).
+  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
+  /// A run driven by a given controller (the extension point for custom algorithms), warmed up.
+  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+        std::unique_ptr<Controller> controller);
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// One step: environment, sense, decide, move, check (SPEC section 2).
+  void step();
+  /// True once the run has ended.
+  bool done() const { return agent_.done(); }
+  /// The run's metrics so far.
+  RunResult result() const { return agent_.result(); }
+
+  /// Time since release (s).
+  double time() const { return agent_.time(); }
+  /// The scenario in use.
+  const Scenario& scenario() const { return agent_.scenario(); }
+  /// The plume.
+  const Plume& plume() const { return plume_; }
+  /// The wind field.
+  const WindField& wind() const { return *wind_; }
+  /// The robot's true state.
+  const RobotState& robot() const { return agent_.robot(); }
+  /// The controller.
+  const Controller& controller() const { return agent_.controller(); }
+  /// The wind sensor (samples taken this step).
+  const WindSensor& wind_sensor() const { return agent_.wind_sensor(); }
+  /// Odor perceived at the last step.
+  bool odor() const { return agent_.odor(); }
+  /// Concentration at the odor sensor at the last step.
+  double concentration() const { return agent_.concentration(); }
+  /// How the run ended (kRunning while it goes on).
+  Outcome outcome() const { return agent_.outcome(); }
+
+ private:
+  std::unique_ptr<WindField> wind_;
+  Plume plume_;
+  Agent agent_;
 };
 
 /// Called after the warm-up and after every step of a run.

@@ -48,6 +48,21 @@ void BM_ConcentrationQuery(benchmark::State& state) {
 }
 BENCHMARK(BM_ConcentrationQuery);
 
+// what a robot asks each step: does the concentration reach the threshold
+void BM_OdorQuery(benchmark::State& state) {
+  const Scenario s;
+  const auto wind = make_wind_field(s.wind);
+  const Plume plume = warm_plume(s, *wind);
+  const Vec3 points[] = {{15.5, 0.0, 0.0}, {8.0, 0.3, 0.0}, {2.0, -0.5, 0.0}, {8.0, 1.5, 0.0}};
+  std::size_t i = 0;
+  int hits = 0;
+  for (auto _ : state) {
+    hits += plume.reaches(points[i++ & 3], s.odor.threshold);
+  }
+  benchmark::DoNotOptimize(hits);
+}
+BENCHMARK(BM_OdorQuery);
+
 void BM_WholeRun(benchmark::State& state) {
   Scenario s;
   s.controller.algorithm = all_algorithms()[static_cast<std::size_t>(state.range(0))];

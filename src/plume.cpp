@@ -1,8 +1,21 @@
 #include "plumetrace/plume.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace plumetrace {
+
+namespace {
+
+void squared_distances(const Vec3& u, const double* __restrict x, const double* __restrict y,
+                       const double* __restrict z, std::size_t m, double* __restrict d2) {
+  for (std::size_t k = 0; k < m; ++k) {
+    const double dx = u.x - x[k], dy = u.y - y[k], dz = u.z - z[k];
+    d2[k] = dx * dx + dy * dy + dz * dz;
+  }
+}
+
+}  // namespace
 
 PlumeParams plume_preset(PlumePreset preset) {
   PlumeParams p;
@@ -133,12 +146,30 @@ void Plume::store(std::size_t i, const Vec3& p, double w) {
   w_[i] = w;
 }
 
-double Plume::concentration(const Vec3& u) const {
-  double c = 0.0;
+double Plume::concentration(const Vec3& u) const { return sum_kernels(u, INFINITY); }
+
+bool Plume::reaches(const Vec3& u, double threshold) const {
+  return sum_kernels(u, threshold) >= threshold;
+}
+
+double Plume::sum_kernels(const Vec3& u, double stop_at) const {
+  // why: squared distances of a block in a loop the compiler vectorises, then the kernels of
+  // the filaments within the cut-off in index order: the same sum as adding every filament
+  // (the others add exactly 0), and partial sums of non-negative terms never decrease, so
+  // stopping at `stop_at` answers "does it reach" exactly
+  constexpr std::size_t kBlock = 256;
+  double d2[kBlock];
+  const double cut2 = params_.cutoff * params_.cutoff;
   const std::size_t n = x_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double dx = u.x - x_[i], dy = u.y - y_[i], dz = u.z - z_[i];
-    c += kernel_value(params_, w_[i], dx * dx + dy * dy + dz * dz);
+  double c = 0.0;
+  for (std::size_t start = 0; start < n; start += kBlock) {
+    const std::size_t m = std::min(kBlock, n - start);
+    squared_distances(u, x_.data() + start, y_.data() + start, z_.data() + start, m, d2);
+    for (std::size_t k = 0; k < m; ++k) {
+      if (d2[k] >= cut2) continue;
+      c += kernel_value(params_, w_[start + k], d2[k]);
+      if (c >= stop_at) return c;
+    }
   }
   return c;
 }

@@ -3,7 +3,7 @@
 namespace plumetrace {
 
 double sense_concentration(const OdorSensorParams& params, const Plume& plume, const Pose& pose) {
-  return plume.concentration({pose.x, pose.y, params.height});
+  return plume.concentration(odor_sensor_point(params, pose));
 }
 
 Vec3 sense_wind_body(const WindSensorParams& params, const WindField& wind, const Pose& pose,

@@ -49,8 +49,8 @@ Agent::Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
 void Agent::release(const Plume& plume, double warmup_time) {
   warmup_time_ = warmup_time;
   // what the sensor reads at release (for traces; the controller first senses after one step)
-  concentration_ = sense_concentration(scenario_.odor, plume, robot_.pose);
-  odor_ = perceives_odor(scenario_.odor, concentration_);
+  sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
+  odor_ = sense_odor(scenario_.odor, plume, robot_.pose);
 }
 
 void Agent::step(const Plume& plume) {
@@ -59,8 +59,8 @@ void Agent::step(const Plume& plume) {
   ++steps_;
 
   // sense
-  concentration_ = sense_concentration(scenario_.odor, plume, robot_.pose);
-  odor_ = perceives_odor(scenario_.odor, concentration_);
+  sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
+  odor_ = sense_odor(scenario_.odor, plume, robot_.pose);
   if (odor_) ++odor_steps_;
   // why: odometry starts at the release pose, so a controller cannot read the arena's frame
   const Pose& start = scenario_.robot.start;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "plumetrace/geometry.hpp"
+#include "plumetrace/scenario.hpp"
 #include "plumetrace/wind.hpp"
 
 namespace plumetrace {
@@ -476,6 +477,35 @@ TEST(Plume, SameSeedSamePlume) {
     EXPECT_EQ(a.z()[i], b.z()[i]);
     EXPECT_EQ(a.w()[i], b.w()[i]);
   }
+}
+
+}  // namespace
+}  // namespace plumetrace
+
+namespace plumetrace {
+namespace {
+
+TEST(Plume, ReachesAnswersExactlyAsTheFullSum) {
+  Scenario s;
+  const auto wind = make_wind_field(s.wind);
+  Plume plume(s.plume, s.source, s.sim.dt, s.arena.x_max, 99);
+  for (int i = 0; i < 700; ++i) plume.step(*wind, i * s.sim.dt);
+  Rng rng(5);
+  int agree = 0, odor = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Vec3 u{1.0 + 15.0 * rng.uniform(), -1.0 + 2.0 * rng.uniform(), 0.0};
+    const double c = plume.concentration(u);
+    // thresholds at, just below and just above the full sum, and the model's own
+    for (const double t : {c, std::nextafter(c, 0.0), std::nextafter(c, INFINITY), 100.0}) {
+      if (t <= 0.0) continue;
+      EXPECT_EQ(plume.reaches(u, t), c >= t) << "at " << u.x << ", " << u.y << " threshold " << t;
+      ++agree;
+    }
+    odor += c >= 100.0;
+  }
+  EXPECT_GT(agree, 10000);
+  EXPECT_GT(odor, 500);  // the points cover both sides of the corridor's edge
+  EXPECT_LT(odor, 3900);
 }
 
 }  // namespace

@@ -96,6 +96,9 @@ class Plume {
 
   /// Odor concentration at point u (paper eq. 4).
   double concentration(const Vec3& u) const;
+  /// Whether the concentration at u reaches `threshold`; the same answer as
+  /// concentration(u) >= threshold, found sooner (the sum stops once it gets there).
+  bool reaches(const Vec3& u, double threshold) const;
 
   /// Number of live filaments.
   std::size_t size() const { return x_.size(); }
@@ -117,6 +120,7 @@ class Plume {
   void release();
   Vec3 release_position();
   void store(std::size_t i, const Vec3& p, double w);
+  double sum_kernels(const Vec3& u, double stop_at) const;
 
   PlumeParams params_;
   SourceParams source_;

@@ -22,8 +22,18 @@ struct WindSensorParams {
   double sigma_a = 0.1;
 };
 
+/// Where the odor sensor of a robot at `pose` samples the plume.
+inline Vec3 odor_sensor_point(const OdorSensorParams& params, const Pose& pose) {
+  return {pose.x, pose.y, params.height};
+}
+
 /// Concentration at the odor sensor of a robot at `pose` (a point sample, no noise).
 double sense_concentration(const OdorSensorParams& params, const Plume& plume, const Pose& pose);
+
+/// Binary odor at the sensor of a robot at `pose`: the concentration reaches the threshold.
+inline bool sense_odor(const OdorSensorParams& params, const Plume& plume, const Pose& pose) {
+  return plume.reaches(odor_sensor_point(params, pose), params.threshold);
+}
 
 /// Binary odor: the concentration reaches the threshold.
 inline bool perceives_odor(const OdorSensorParams& params, double concentration) {

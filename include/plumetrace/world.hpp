@@ -84,8 +84,8 @@ class Agent {
   const WindSensor& wind_sensor() const { return wind_sensor_; }
   /// Odor perceived at the last step.
   bool odor() const { return odor_; }
-  /// Concentration at the odor sensor at the last step.
-  double concentration() const { return concentration_; }
+  /// Where the odor sensor sampled the plume at the last step.
+  const Vec3& sensed_at() const { return sensed_at_; }
   /// How the run ended (kRunning while it goes on).
   Outcome outcome() const { return outcome_; }
 
@@ -101,7 +101,7 @@ class Agent {
   double warmup_time_ = 0.0;
   std::int64_t steps_ = 0;
   std::int64_t odor_steps_ = 0;
-  double concentration_ = 0.0;
+  Vec3 sensed_at_;
   bool odor_ = false;
   Outcome outcome_ = Outcome::kRunning;
 };
@@ -148,8 +148,8 @@ class World {
   const WindSensor& wind_sensor() const { return agent_.wind_sensor(); }
   /// Odor perceived at the last step.
   bool odor() const { return agent_.odor(); }
-  /// Concentration at the odor sensor at the last step.
-  double concentration() const { return agent_.concentration(); }
+  /// Concentration at the odor sensor at the last step (computed on demand, for traces).
+  double concentration() const { return plume_.concentration(agent_.sensed_at()); }
   /// How the run ended (kRunning while it goes on).
   Outcome outcome() const { return agent_.outcome(); }
 

@@ -1,6 +1,9 @@
 #include "plumetrace/plume.hpp"
 
 #include <algorithm>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 #include <cmath>
 
 namespace plumetrace {
@@ -13,6 +16,34 @@ void squared_distances(const Vec3& u, const double* __restrict x, const double* 
     const double dx = u.x - x[k], dy = u.y - y[k], dz = u.z - z[k];
     d2[k] = dx * dx + dy * dy + dz * dz;
   }
+}
+
+// smallest and largest of x[0..m) (m >= 1); min and max are exact, so any order gives the same
+void x_range(const double* x, std::size_t m, double& lo, double& hi) {
+#ifdef __SSE2__
+  __m128d vlo = _mm_set1_pd(x[0]), vhi = vlo;
+  std::size_t k = 0;
+  for (; k + 2 <= m; k += 2) {
+    const __m128d v = _mm_loadu_pd(x + k);
+    vlo = _mm_min_pd(vlo, v);
+    vhi = _mm_max_pd(vhi, v);
+  }
+  double l[2], h[2];
+  _mm_storeu_pd(l, vlo);
+  _mm_storeu_pd(h, vhi);
+  lo = std::min(l[0], l[1]);
+  hi = std::max(h[0], h[1]);
+  for (; k < m; ++k) {
+    lo = std::min(lo, x[k]);
+    hi = std::max(hi, x[k]);
+  }
+#else
+  lo = hi = x[0];
+  for (std::size_t k = 1; k < m; ++k) {
+    lo = std::min(lo, x[k]);
+    hi = std::max(hi, x[k]);
+  }
+#endif
 }
 
 }  // namespace
@@ -72,8 +103,18 @@ Plume::Plume(const PlumeParams& params, const SourceParams& source, double dt, d
 void Plume::step(const WindField& wind, double t) {
   move(wind, t);
   release();
+  update_bounds();
 }
 
+void Plume::update_bounds() {
+  const std::size_t n = x_.size();
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  bounds_.resize(2 * blocks);  // allocates only when the plume grows past its capacity
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t start = b * kBlock, end = std::min(n, start + kBlock);
+    x_range(x_.data() + start, end - start, bounds_[2 * b], bounds_[2 * b + 1]);
+  }
+}
 void Plume::move(const WindField& wind, double t) {
   const std::size_t n = x_.size();
   const bool uniform = wind.uniform_in_space();
@@ -157,12 +198,16 @@ double Plume::sum_kernels(const Vec3& u, double stop_at) const {
   // the filaments within the cut-off in index order: the same sum as adding every filament
   // (the others add exactly 0), and partial sums of non-negative terms never decrease, so
   // stopping at `stop_at` answers "does it reach" exactly
-  constexpr std::size_t kBlock = 256;
   double d2[kBlock];
   const double cut2 = params_.cutoff * params_.cutoff;
   const std::size_t n = x_.size();
   double c = 0.0;
   for (std::size_t start = 0; start < n; start += kBlock) {
+    // why: rounding is monotonic, so no filament of a block is nearer than its box; a box at or
+    // beyond the cut-off holds only filaments that add exactly 0
+    const double* box = bounds_.data() + 2 * (start / kBlock);
+    const double ex = std::max({box[0] - u.x, 0.0, u.x - box[1]});
+    if (ex * ex >= cut2) continue;
     const std::size_t m = std::min(kBlock, n - start);
     squared_distances(u, x_.data() + start, y_.data() + start, z_.data() + start, m, d2);
     for (std::size_t k = 0; k < m; ++k) {

@@ -86,6 +86,9 @@ double kernel_value(const PlumeParams& params, double w, double d2);
 /// The filament plume: positions and widths as arrays, advanced one dt at a time.
 class Plume {
  public:
+  /// Filaments per block of the concentration query.
+  static constexpr std::size_t kBlock = 256;
+
   /// Creates an empty plume; filaments at x > removal_x leave under Lifetime::kLeaveArena.
   Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
         std::uint64_t seed);
@@ -121,6 +124,7 @@ class Plume {
   Vec3 release_position();
   void store(std::size_t i, const Vec3& p, double w);
   double sum_kernels(const Vec3& u, double stop_at) const;
+  void update_bounds();
 
   PlumeParams params_;
   SourceParams source_;
@@ -132,6 +136,9 @@ class Plume {
   std::uint64_t released_ = 0;
   std::size_t oldest_ = 0;  // ring buffer: index overwritten next once full
   std::vector<double> x_, y_, z_, w_;
+  // x range of each block of kBlock filaments (min, max), so a query skips the blocks that lie
+  // wholly beyond the cut-off along x (filaments sit roughly in release order, so along x)
+  std::vector<double> bounds_;
 };
 
 }  // namespace plumetrace

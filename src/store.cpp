@@ -179,6 +179,17 @@ Store::~Store() { sqlite3_close(db_); }
 
 void Store::exec(const std::string& sql) const { exec_sql(db_, path_, sql); }
 
+void Store::in_transaction(const std::function<void()>& work) {
+  exec("BEGIN;");
+  try {
+    work();
+    exec("COMMIT;");
+  } catch (...) {
+    exec("ROLLBACK;");
+    throw;
+  }
+}
+
 std::string Store::meta(const std::string& key) const {
   Statement q(db_, "SELECT value FROM meta WHERE key = ?", path_);
   q.bind(1, key);
@@ -188,8 +199,7 @@ std::string Store::meta(const std::string& key) const {
 std::string Store::definition() const { return meta("definition"); }
 
 void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
-  exec("BEGIN;");
-  try {
+  in_transaction([&] {
     Statement put(db_,
                   "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, config) "
                   "VALUES (?, ?, ?, ?, ?)",
@@ -209,16 +219,11 @@ void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
         put.reset();
       }
     }
-    exec("COMMIT;");
-  } catch (...) {
-    exec("ROLLBACK;");
-    throw;
-  }
+  });
 }
 
 void Store::insert(const std::vector<RunRow>& rows) {
-  exec("BEGIN;");
-  try {
+  in_transaction([&] {
     Statement put(db_,
                   "INSERT INTO runs (sweep, point, trial, seed, config_hash, outcome, success, "
                   "time_s, d_t, d_u, overhead, losses, odor_fraction, steps, wind_samples) "
@@ -244,11 +249,7 @@ void Store::insert(const std::vector<RunRow>& rows) {
       put.step();
       put.reset();
     }
-    exec("COMMIT;");
-  } catch (...) {
-    exec("ROLLBACK;");
-    throw;
-  }
+  });
 }
 
 std::set<RunKey> Store::keys() const {

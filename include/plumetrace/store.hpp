@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -49,6 +50,7 @@ class Store {
 
  private:
   void exec(const std::string& sql) const;
+  void in_transaction(const std::function<void()>& work);
   std::string meta(const std::string& key) const;
 
   std::string path_;

@@ -1,49 +1,158 @@
 #include "plumetrace/plume.hpp"
 
 #include <algorithm>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 #include <cmath>
+#include <cstring>
+
+#include "vector_math.hpp"
+
+// why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
+// operations that round identically at every width, so every version gives the same bits
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define PLUMETRACE_VECTOR_CLONES \
+  __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define PLUMETRACE_VECTOR_CLONES
+#endif
 
 namespace plumetrace {
 
 namespace {
 
-void squared_distances(const Vec3& u, const double* __restrict x, const double* __restrict y,
-                       const double* __restrict z, std::size_t m, double* __restrict d2) {
-  for (std::size_t k = 0; k < m; ++k) {
-    const double dx = u.x - x[k], dy = u.y - y[k], dz = u.z - z[k];
-    d2[k] = dx * dx + dy * dy + dz * dz;
+using vmath::kGamma;
+
+// one step of filaments 0..n-1: drift d (the wind's displacement, zero where the caller has
+// moved them already), random walk of standard deviation `stddev` and width growth (paper eqs. 2
+// and 3; w += gamma / (2 w) as w += (gamma / 2) h with h = 1 / w kept for the query).
+// Normals: a Box-Muller pair for (x, y) of filament i (counter 2i) and one for z of filaments j
+// and j + n / 2 (counter 2j + 1), each counter hashed with the step's key.
+PLUMETRACE_VECTOR_CLONES
+void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
+                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
+                     std::uint64_t key, double stddev, double gamma) {
+  const double dx = d.x, dy = d.y, dz = d.z, half_gamma = 0.5 * gamma;
+  for (std::int64_t i = 0; i < n; ++i) {
+    float a, b;
+    vmath::normal_pair(vmath::mix64(key + static_cast<std::uint64_t>(2 * i) * kGamma), a, b);
+    x[i] += dx + stddev * static_cast<double>(a);
+    y[i] += dy + stddev * static_cast<double>(b);
+    w[i] += half_gamma * h[i];
+    h[i] = 1.0 / w[i];
+  }
+  const std::int64_t half = n / 2;
+  double* __restrict z2 = z + half;
+  for (std::int64_t j = 0; j < half; ++j) {
+    float a, b;
+    vmath::normal_pair(vmath::mix64(key + static_cast<std::uint64_t>(2 * j + 1) * kGamma), a, b);
+    z[j] += dz + stddev * static_cast<double>(a);
+    z2[j] += dz + stddev * static_cast<double>(b);
+  }
+  if (n % 2 == 1) {
+    float a, b;
+    vmath::normal_pair(vmath::mix64(key + static_cast<std::uint64_t>(n) * kGamma), a, b);
+    z[n - 1] += dz + stddev * static_cast<double>(a);
   }
 }
 
-// smallest and largest of x[0..m) (m >= 1); min and max are exact, so any order gives the same
-void x_range(const double* x, std::size_t m, double& lo, double& hi) {
-#ifdef __SSE2__
-  __m128d vlo = _mm_set1_pd(x[0]), vhi = vlo;
-  std::size_t k = 0;
-  for (; k + 2 <= m; k += 2) {
-    const __m128d v = _mm_loadu_pd(x + k);
-    vlo = _mm_min_pd(vlo, v);
-    vhi = _mm_max_pd(vhi, v);
+// the kernel's amount over w^3, without the exponential
+double kernel_scale(const PlumeParams& params) {
+  // why: the plugin normalises the 3-D Gaussian and squares the distance (SPEC section 2)
+  static const double kNorm = std::sqrt(8.0 * kPi * kPi * kPi);
+  return params.kernel == Kernel::kGaussian ? params.amount / kNorm : params.amount;
+}
+
+// one filament's concentration at squared distance d2, given h = 1 / w; 0 at or beyond the
+// cut-off (no division, so that the query vectorises cheaply)
+template <Kernel kKernel>
+double kernel_at(double scale, double cut2, double h, double d2) {
+  const double h2 = h * h;
+  const double arg = kKernel == Kernel::kGaussian ? d2 * h2 : std::sqrt(d2) * h2;
+  const double v = scale * (h2 * h) * vmath::exp_neg(-arg);
+  return d2 < cut2 ? v : 0.0;
+}
+
+// the concentrations of m filaments at u, one per filament
+template <Kernel kKernel>
+[[gnu::always_inline]] inline void kernels(const Vec3& u, const double* __restrict x,
+                                           const double* __restrict y,
+                                           const double* __restrict z,
+                                           const double* __restrict h, std::int64_t m,
+                                           double scale, double cut2, double* __restrict out) {
+  const double ux = u.x, uy = u.y, uz = u.z;
+  for (std::int64_t k = 0; k < m; ++k) {
+    const double dx = ux - x[k], dy = uy - y[k], dz = uz - z[k];
+    out[k] = kernel_at<kKernel>(scale, cut2, h[k], dx * dx + dy * dy + dz * dz);
   }
-  double l[2], h[2];
-  _mm_storeu_pd(l, vlo);
-  _mm_storeu_pd(h, vhi);
-  lo = std::min(l[0], l[1]);
-  hi = std::max(h[0], h[1]);
-  for (; k < m; ++k) {
-    lo = std::min(lo, x[k]);
-    hi = std::max(hi, x[k]);
+}
+
+PLUMETRACE_VECTOR_CLONES
+void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
+             const double* __restrict z, const double* __restrict h, std::int64_t m,
+             double scale, Kernel kernel, double cut2, double* __restrict out) {
+  if (kernel == Kernel::kGaussian) {
+    kernels<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
+  } else {
+    kernels<Kernel::kPrinted>(u, x, y, z, h, m, scale, cut2, out);
   }
-#else
-  lo = hi = x[0];
-  for (std::size_t k = 1; k < m; ++k) {
-    lo = std::min(lo, x[k]);
-    hi = std::max(hi, x[k]);
+}
+
+// why: the vector lambdas below are inlined and never cross a call boundary, so GCC's note that
+// passing 64-byte vectors changes the ABI between clones does not apply
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// the x and y range of each block of `block` filaments, as (x min, x max, y min, y max);
+// min and max are exact, so any grouping gives the same
+PLUMETRACE_VECTOR_CLONES
+void block_boxes(const double* x, const double* y, std::size_t n, std::size_t block,
+                 double* boxes) {
+  // why: GCC's vector types, lowered to the widest registers of each clone
+  using V = double __attribute__((vector_size(64)));
+  using Lanes = std::int64_t __attribute__((vector_size(64)));
+  constexpr std::size_t kWidth = sizeof(V) / sizeof(double);
+  const auto load = [](V& v, const double* p) { std::memcpy(&v, p, sizeof(V)); };
+  // the extreme of the lanes, folding halves onto each other
+  const auto fold = [](V v, auto smaller) {
+    for (const Lanes swap : {Lanes{4, 5, 6, 7, 0, 1, 2, 3}, Lanes{2, 3, 0, 1, 6, 7, 4, 5},
+                             Lanes{1, 0, 3, 2, 5, 4, 7, 6}}) {
+      const V w = __builtin_shuffle(v, swap);
+      v = smaller(w, v) ? w : v;
+    }
+    return v[0];
+  };
+  const auto below = [](const V& a, const V& b) { return a < b; };
+  const auto above = [](const V& a, const V& b) { return a > b; };
+  for (std::size_t start = 0, b = 0; start < n; start += block, ++b) {
+    const std::size_t end = std::min(n, start + block);
+    double* box = boxes + 4 * b;
+    std::size_t k = start;
+    box[0] = box[1] = x[start];
+    box[2] = box[3] = y[start];
+    if (end - start >= kWidth) {
+      V xlo, ylo;
+      load(xlo, x + k);
+      load(ylo, y + k);
+      V xhi = xlo, yhi = ylo;
+      for (k += kWidth; k + kWidth <= end; k += kWidth) {
+        V vx, vy;
+        load(vx, x + k);
+        load(vy, y + k);
+        xlo = vx < xlo ? vx : xlo;
+        xhi = vx > xhi ? vx : xhi;
+        ylo = vy < ylo ? vy : ylo;
+        yhi = vy > yhi ? vy : yhi;
+      }
+      box[0] = fold(xlo, below);
+      box[1] = fold(xhi, above);
+      box[2] = fold(ylo, below);
+      box[3] = fold(yhi, above);
+    }
+    for (; k < end; ++k) {
+      box[0] = std::min(box[0], x[k]);
+      box[1] = std::max(box[1], x[k]);
+      box[2] = std::min(box[2], y[k]);
+      box[3] = std::max(box[3], y[k]);
+    }
   }
-#endif
 }
 
 }  // namespace
@@ -74,14 +183,10 @@ double walk_stddev(const PlumeParams& params, double dt) {
 }
 
 double kernel_value(const PlumeParams& params, double w, double d2) {
-  if (d2 >= params.cutoff * params.cutoff) return 0.0;
-  const double w2 = w * w;
-  if (params.kernel == Kernel::kGaussian) {
-    // why: the plugin normalises the 3-D Gaussian and squares the distance (SPEC section 2)
-    static const double kNorm = std::sqrt(8.0 * kPi * kPi * kPi);
-    return params.amount / (kNorm * w2 * w) * std::exp(-d2 / w2);
-  }
-  return params.amount / (w2 * w) * std::exp(-std::sqrt(d2) / w2);
+  const double scale = kernel_scale(params), cut2 = params.cutoff * params.cutoff;
+  const double h = 1.0 / w;
+  return params.kernel == Kernel::kGaussian ? kernel_at<Kernel::kGaussian>(scale, cut2, h, d2)
+                                            : kernel_at<Kernel::kPrinted>(scale, cut2, h, d2);
 }
 
 Plume::Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
@@ -98,6 +203,7 @@ Plume::Plume(const PlumeParams& params, const SourceParams& source, double dt, d
   y_.reserve(reserve);
   z_.reserve(reserve);
   w_.reserve(reserve);
+  h_.reserve(reserve);
 }
 
 void Plume::step(const WindField& wind, double t) {
@@ -108,25 +214,31 @@ void Plume::step(const WindField& wind, double t) {
 
 void Plume::update_bounds() {
   const std::size_t n = x_.size();
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  bounds_.resize(2 * blocks);  // allocates only when the plume grows past its capacity
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t start = b * kBlock, end = std::min(n, start + kBlock);
-    x_range(x_.data() + start, end - start, bounds_[2 * b], bounds_[2 * b + 1]);
-  }
+  bounds_.resize(4 * ((n + kBlock - 1) / kBlock));  // allocates only past the capacity
+  block_boxes(x_.data(), y_.data(), n, kBlock, bounds_.data());
 }
+
 void Plume::move(const WindField& wind, double t) {
   const std::size_t n = x_.size();
-  const bool uniform = wind.uniform_in_space();
-  const Vec3 a0 = wind.velocity(source_.center, t);
-  for (std::size_t i = 0; i < n; ++i) {
-    // advection plus random walk (paper eq. 2), then width growth (eq. 3)
-    const Vec3 a = uniform ? a0 : wind.velocity({x_[i], y_[i], z_[i]}, t);
-    x_[i] += a.x * dt_ + walk_std_ * rng_.normal();
-    y_[i] += a.y * dt_ + walk_std_ * rng_.normal();
-    z_[i] += a.z * dt_ + walk_std_ * rng_.normal();
-    w_[i] += params_.gamma / (2.0 * w_[i]);
+  // advection by the wind (paper eq. 2, first term): one displacement for a uniform wind,
+  // else each filament moved here by the wind at its position
+  Vec3 drift{0.0, 0.0, 0.0};
+  if (wind.uniform_in_space()) {
+    const Vec3 a = wind.velocity(source_.center, t);
+    drift = {a.x * dt_, a.y * dt_, a.z * dt_};
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 a = wind.velocity({x_[i], y_[i], z_[i]}, t);
+      x_[i] += a.x * dt_;
+      y_[i] += a.y * dt_;
+      z_[i] += a.z * dt_;
+    }
   }
+  // random walk (second term) and width growth (eq. 3); the walk's normals come from a
+  // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
+  const std::uint64_t key = rng_.next_u64();
+  drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
+                  static_cast<std::int64_t>(n), drift, key, walk_std_, params_.gamma);
   if (params_.lifetime == Lifetime::kLeaveArena) {
     // stable compaction keeps the order, so sums stay reproducible
     std::size_t kept = 0;
@@ -136,12 +248,14 @@ void Plume::move(const WindField& wind, double t) {
       y_[kept] = y_[i];
       z_[kept] = z_[i];
       w_[kept] = w_[i];
+      h_[kept] = h_[i];
       ++kept;
     }
     x_.resize(kept);
     y_.resize(kept);
     z_.resize(kept);
     w_.resize(kept);
+    h_.resize(kept);
   }
 }
 
@@ -161,6 +275,7 @@ void Plume::release() {
       y_.push_back(p.y);
       z_.push_back(p.z);
       w_.push_back(params_.initial_width);
+      h_.push_back(1.0 / params_.initial_width);
     }
     ++released_;
   }
@@ -185,6 +300,7 @@ void Plume::store(std::size_t i, const Vec3& p, double w) {
   y_[i] = p.y;
   z_[i] = p.z;
   w_[i] = w;
+  h_[i] = 1.0 / w;
 }
 
 double Plume::concentration(const Vec3& u) const { return sum_kernels(u, INFINITY); }
@@ -194,29 +310,39 @@ bool Plume::reaches(const Vec3& u, double threshold) const {
 }
 
 double Plume::sum_kernels(const Vec3& u, double stop_at) const {
-  // why: squared distances of a block in a loop the compiler vectorises, then the kernels of
-  // the filaments within the cut-off in index order: the same sum as adding every filament
-  // (the others add exactly 0), and partial sums of non-negative terms never decrease, so
-  // stopping at `stop_at` answers "does it reach" exactly
-  double d2[kBlock];
+  // why: the sum is defined as kLanes partial sums, filament i going to sum i mod kLanes in
+  // index order, added pairwise at the end; so its terms are computed in vector loops and the
+  // result is the same bits at every vector width. Partial sums of non-negative terms never
+  // decrease and rounding is monotonic, so stopping once the total reaches `stop_at` answers
+  // "does it reach" exactly as the full sum would.
+  constexpr std::size_t kLanes = 8;
+  static_assert(kBlock % kLanes == 0);
+  double v[kBlock];
+  double acc[kLanes] = {};
+  const auto total = [&acc] {
+    return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+  };
   const double cut2 = params_.cutoff * params_.cutoff;
+  const double scale = kernel_scale(params_);
   const std::size_t n = x_.size();
-  double c = 0.0;
   for (std::size_t start = 0; start < n; start += kBlock) {
-    // why: rounding is monotonic, so no filament of a block is nearer than its box; a box at or
-    // beyond the cut-off holds only filaments that add exactly 0
-    const double* box = bounds_.data() + 2 * (start / kBlock);
+    // why: rounding is monotonic, so no filament of a block is nearer than its box in (x, y);
+    // a box at or beyond the cut-off holds only filaments that add exactly 0
+    const double* box = bounds_.data() + 4 * (start / kBlock);
     const double ex = std::max({box[0] - u.x, 0.0, u.x - box[1]});
-    if (ex * ex >= cut2) continue;
+    const double ey = std::max({box[2] - u.y, 0.0, u.y - box[3]});
+    if (ex * ex + ey * ey >= cut2) continue;
     const std::size_t m = std::min(kBlock, n - start);
-    squared_distances(u, x_.data() + start, y_.data() + start, z_.data() + start, m, d2);
-    for (std::size_t k = 0; k < m; ++k) {
-      if (d2[k] >= cut2) continue;
-      c += kernel_value(params_, w_[start + k], d2[k]);
-      if (c >= stop_at) return c;
+    kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
+            static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    std::size_t k = 0;
+    for (; k + kLanes <= m; k += kLanes) {
+      for (std::size_t l = 0; l < kLanes; ++l) acc[l] += v[k + l];
     }
+    for (; k < m; ++k) acc[k % kLanes] += v[k];
+    if (total() >= stop_at) break;
   }
-  return c;
+  return total();
 }
 
 }  // namespace plumetrace

@@ -87,7 +87,7 @@ double kernel_value(const PlumeParams& params, double w, double d2);
 class Plume {
  public:
   /// Filaments per block of the concentration query.
-  static constexpr std::size_t kBlock = 256;
+  static constexpr std::size_t kBlock = 64;
 
   /// Creates an empty plume; filaments at x > removal_x leave under Lifetime::kLeaveArena.
   Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
@@ -136,8 +136,10 @@ class Plume {
   std::uint64_t released_ = 0;
   std::size_t oldest_ = 0;  // ring buffer: index overwritten next once full
   std::vector<double> x_, y_, z_, w_;
-  // x range of each block of kBlock filaments (min, max), so a query skips the blocks that lie
-  // wholly beyond the cut-off along x (filaments sit roughly in release order, so along x)
+  std::vector<double> h_;  // 1 / w, so that the query needs no division
+  // x and y range of each block of kBlock filaments (x min, x max, y min, y max), so a query
+  // skips the blocks wholly beyond the cut-off (filaments sit roughly in release order, so
+  // along x)
   std::vector<double> bounds_;
 };
 

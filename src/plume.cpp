@@ -4,11 +4,13 @@
 #include <cmath>
 #include <cstring>
 
+#include "plume_loops.hpp"
 #include "vector_math.hpp"
 
 // why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
 // operations that round identically at every width, so every version gives the same bits
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    !defined(PLUMETRACE_NO_VECTOR_CLONES)
 #define PLUMETRACE_VECTOR_CLONES \
   __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
 #else
@@ -18,41 +20,6 @@
 namespace plumetrace {
 
 namespace {
-
-using vmath::kGamma;
-
-// one step of filaments 0..n-1: drift d (the wind's displacement, zero where the caller has
-// moved them already), random walk of standard deviation `stddev` and width growth (paper eqs. 2
-// and 3; w += gamma / (2 w) as w += (gamma / 2) h with h = 1 / w kept for the query).
-// Normals: a Box-Muller pair for (x, y) of filament i (counter 2i) and one for z of filaments j
-// and j + n / 2 (counter 2j + 1), each counter hashed with the step's key.
-PLUMETRACE_VECTOR_CLONES
-void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
-                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
-                     std::uint64_t key, double stddev, double gamma) {
-  const double dx = d.x, dy = d.y, dz = d.z, half_gamma = 0.5 * gamma;
-  for (std::int64_t i = 0; i < n; ++i) {
-    float a, b;
-    vmath::normal_pair(vmath::mix64(key + static_cast<std::uint64_t>(2 * i) * kGamma), a, b);
-    x[i] += dx + stddev * static_cast<double>(a);
-    y[i] += dy + stddev * static_cast<double>(b);
-    w[i] += half_gamma * h[i];
-    h[i] = 1.0 / w[i];
-  }
-  const std::int64_t half = n / 2;
-  double* __restrict z2 = z + half;
-  for (std::int64_t j = 0; j < half; ++j) {
-    float a, b;
-    vmath::normal_pair(vmath::mix64(key + static_cast<std::uint64_t>(2 * j + 1) * kGamma), a, b);
-    z[j] += dz + stddev * static_cast<double>(a);
-    z2[j] += dz + stddev * static_cast<double>(b);
-  }
-  if (n % 2 == 1) {
-    float a, b;
-    vmath::normal_pair(vmath::mix64(key + static_cast<std::uint64_t>(n) * kGamma), a, b);
-    z[n - 1] += dz + stddev * static_cast<double>(a);
-  }
-}
 
 // the kernel's amount over w^3, without the exponential
 double kernel_scale(const PlumeParams& params) {
@@ -73,7 +40,7 @@ double kernel_at(double scale, double cut2, double h, double d2) {
 
 // the concentrations of m filaments at u, one per filament
 template <Kernel kKernel>
-[[gnu::always_inline]] inline void kernels(const Vec3& u, const double* __restrict x,
+[[gnu::always_inline]] inline void kernel_loop(const Vec3& u, const double* __restrict x,
                                            const double* __restrict y,
                                            const double* __restrict z,
                                            const double* __restrict h, std::int64_t m,
@@ -85,16 +52,6 @@ template <Kernel kKernel>
   }
 }
 
-PLUMETRACE_VECTOR_CLONES
-void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
-             const double* __restrict z, const double* __restrict h, std::int64_t m,
-             double scale, Kernel kernel, double cut2, double* __restrict out) {
-  if (kernel == Kernel::kGaussian) {
-    kernels<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
-  } else {
-    kernels<Kernel::kPrinted>(u, x, y, z, h, m, scale, cut2, out);
-  }
-}
 
 // why: the vector lambdas below are inlined and never cross a call boundary, so GCC's note that
 // passing 64-byte vectors changes the ABI between clones does not apply
@@ -156,6 +113,49 @@ void block_boxes(const double* x, const double* y, std::size_t n, std::size_t bl
 }
 
 }  // namespace
+
+namespace loops {
+
+PLUMETRACE_VECTOR_CLONES
+void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
+                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
+                     std::uint64_t key, double stddev, double gamma) {
+  const double dx = d.x, dy = d.y, dz = d.z, half_gamma = 0.5 * gamma;
+  for (std::int64_t i = 0; i < n; ++i) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * i)), a, b);
+    x[i] += dx + stddev * static_cast<double>(a);
+    y[i] += dy + stddev * static_cast<double>(b);
+    w[i] += half_gamma * h[i];
+    h[i] = 1.0 / w[i];
+  }
+  const std::int64_t half = n / 2;
+  double* __restrict z2 = z + half;
+  for (std::int64_t j = 0; j < half; ++j) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * j + 1)), a, b);
+    z[j] += dz + stddev * static_cast<double>(a);
+    z2[j] += dz + stddev * static_cast<double>(b);
+  }
+  if (n % 2 == 1) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(n)), a, b);
+    z[n - 1] += dz + stddev * static_cast<double>(a);
+  }
+}
+
+PLUMETRACE_VECTOR_CLONES
+void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
+             const double* __restrict z, const double* __restrict h, std::int64_t m,
+             double scale, Kernel kernel, double cut2, double* __restrict out) {
+  if (kernel == Kernel::kGaussian) {
+    kernel_loop<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
+  } else {
+    kernel_loop<Kernel::kPrinted>(u, x, y, z, h, m, scale, cut2, out);
+  }
+}
+
+}  // namespace loops
 
 PlumeParams plume_preset(PlumePreset preset) {
   PlumeParams p;
@@ -237,7 +237,7 @@ void Plume::move(const WindField& wind, double t) {
   // random walk (second term) and width growth (eq. 3); the walk's normals come from a
   // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
   const std::uint64_t key = rng_.next_u64();
-  drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
+  loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
                   static_cast<std::int64_t>(n), drift, key, walk_std_, params_.gamma);
   if (params_.lifetime == Lifetime::kLeaveArena) {
     // stable compaction keeps the order, so sums stay reproducible
@@ -333,7 +333,7 @@ double Plume::sum_kernels(const Vec3& u, double stop_at) const {
     const double ey = std::max({box[2] - u.y, 0.0, u.y - box[3]});
     if (ex * ex + ey * ey >= cut2) continue;
     const std::size_t m = std::min(kBlock, n - start);
-    kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
+    loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
             static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
     std::size_t k = 0;
     for (; k + kLanes <= m; k += kLanes) {

@@ -21,6 +21,11 @@ inline std::uint64_t mix64(std::uint64_t z) {
 /// Weyl increment of the SplitMix64 sequence.
 inline constexpr std::uint64_t kGamma = 0x9e3779b97f4a7c15ULL;
 
+/// The random bits of counter c of the stream `key`: SplitMix64 at position c.
+inline std::uint64_t counter_bits(std::uint64_t key, std::uint64_t c) {
+  return mix64(key + c * kGamma);
+}
+
 /// Natural logarithm of a normal float u > 0 (relative error below 2e-7).
 inline float log_f(float u) {
   // u = 2^e m with m in [sqrt(1/2), sqrt(2)), by integer arithmetic on the bits (no branch)
@@ -35,7 +40,8 @@ inline float log_f(float u) {
   return static_cast<float>(e) * 0.693147181f + 2.0f * s * p;
 }
 
-/// Two independent standard normal samples from 64 random bits (Box-Muller).
+/// Two independent standard normal samples from 64 random bits (Box-Muller), in single
+/// precision (relative error below 3e-7).
 ///
 /// The upper 31 bits give the radius, u in [2^-32, 1] (samples up to 6.66 standard deviations),
 /// the lower 24 the angle: 2 bits of quadrant and 22 bits within it.
@@ -43,7 +49,8 @@ inline void normal_pair(std::uint64_t bits, float& a, float& b) {
   const auto hi = static_cast<std::int32_t>(bits >> 33);
   const float u = (static_cast<float>(hi) + 0.5f) * 0x1.0p-31f;
   const float r = std::sqrt(-2.0f * log_f(u));
-  // angle (q + f) pi/2 with f in [-1/2, 1/2): cos and sin of f pi/2 by Taylor series
+  // angle (q + f) pi/2 with f in [-1/2, 1/2): cos and sin of x = f pi/2 by the minimax
+  // polynomials of Cephes' single-precision sinf and cosf on [-pi/4, pi/4]
   const auto lo = static_cast<std::uint32_t>(bits);
   const std::uint32_t q = lo & 3u;
   const float f = static_cast<float>(static_cast<std::int32_t>((lo >> 2) & 0x3fffffu)) *

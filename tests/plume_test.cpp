@@ -10,6 +10,8 @@
 #include "plumetrace/geometry.hpp"
 #include "plumetrace/scenario.hpp"
 #include "plumetrace/wind.hpp"
+#include "plume_loops.hpp"
+#include "vector_math.hpp"
 
 namespace plumetrace {
 namespace {
@@ -169,8 +171,8 @@ TEST(Plume, WidthFollowsGrowthRecurrence) {
     double w = params.initial_width;
     for (int k = 1; k <= n; ++k) {
       plume.step(wind, k * kDt);
-      w += gamma / (2.0 * w);
-      EXPECT_DOUBLE_EQ(plume.w()[0], w) << "gamma " << gamma << " step " << k;
+      w += (gamma / 2.0) * (1.0 / w);  // gamma / (2 w), as the plume computes it
+      EXPECT_EQ(plume.w()[0], w) << "gamma " << gamma << " step " << k;
     }
     // w^2 grows by gamma + gamma^2 / (4 w^2) per step: between w0^2 + n gamma and that plus
     // n gamma^2 / (4 w0^2)
@@ -484,6 +486,73 @@ TEST(Plume, SameSeedSamePlume) {
 
 namespace plumetrace {
 namespace {
+
+// The scalar formulas of the plume's loops, one filament at a time and never vectorised.
+[[gnu::optimize("no-tree-vectorize")]] void scalar_step(std::vector<double>& x,
+                                                        std::vector<double>& y,
+                                                        std::vector<double>& z,
+                                                        std::vector<double>& w,
+                                                        const Vec3& d, std::uint64_t key,
+                                                        double stddev, double gamma) {
+  const auto n = static_cast<std::int64_t>(x.size());
+  const auto normals = [key](std::int64_t counter) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(counter)), a, b);
+    return std::pair<double, double>(a, b);
+  };
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto [a, b] = normals(2 * i);
+    x[i] += d.x + stddev * a;
+    y[i] += d.y + stddev * b;
+    w[i] += (gamma / 2.0) * (1.0 / w[i]);
+  }
+  for (std::int64_t j = 0; j < n / 2; ++j) {
+    const auto [a, b] = normals(2 * j + 1);
+    z[j] += d.z + stddev * a;
+    z[j + n / 2] += d.z + stddev * b;
+  }
+  if (n % 2 == 1) z[n - 1] += d.z + stddev * normals(n).first;
+}
+
+TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
+  Rng rng(8);
+  for (const std::int64_t n : {1, 2, 7, 64, 1001, 1600}) {
+    std::vector<double> x(n), y(n), z(n), w(n), h(n);
+    for (std::int64_t i = 0; i < n; ++i) {
+      x[i] = 16.0 * rng.uniform();
+      y[i] = rng.uniform() - 0.5;
+      z[i] = 0.1 * rng.uniform();
+      w[i] = 0.1 + 0.05 * rng.uniform();
+      h[i] = 1.0 / w[i];
+    }
+    // one step: the loop the plume runs, against the scalar formulas
+    auto sx = x, sy = y, sz = z, sw = w;
+    const Vec3 d{0.032, -0.001, 0.0005};
+    loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, d, 0xabcdef + n,
+                           0.0032, 4e-7);
+    scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7);
+    for (std::int64_t i = 0; i < n; ++i) {
+      ASSERT_EQ(x[i], sx[i]) << "n " << n << " filament " << i;
+      ASSERT_EQ(y[i], sy[i]) << "n " << n << " filament " << i;
+      ASSERT_EQ(z[i], sz[i]) << "n " << n << " filament " << i;
+      ASSERT_EQ(w[i], sw[i]) << "n " << n << " filament " << i;
+      ASSERT_EQ(h[i], 1.0 / sw[i]) << "n " << n << " filament " << i;
+    }
+    // kernels at a point: the loop against kernel_value, per filament, for both kernels
+    for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {
+      const PlumeParams params = plume_preset(preset);
+      const Vec3 u{8.0, 0.1, 0.0};
+      std::vector<double> out(n);
+      const double scale = kernel_value(params, 1.0, 0.0);  // amount factor: w = 1 at d = 0
+      loops::kernels(u, x.data(), y.data(), z.data(), h.data(), n, scale, params.kernel,
+                     params.cutoff * params.cutoff, out.data());
+      for (std::int64_t i = 0; i < n; ++i) {
+        const double d2 = distance_squared(u, {x[i], y[i], z[i]});
+        ASSERT_EQ(out[i], kernel_value(params, w[i], d2)) << "n " << n << " filament " << i;
+      }
+    }
+  }
+}
 
 TEST(Plume, ReachesAnswersExactlyAsTheFullSum) {
   Scenario s;

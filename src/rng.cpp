@@ -8,7 +8,7 @@ namespace plumetrace {
 namespace {
 
 // why: a ziggurat needs only a table look-up and a multiply on 98% of draws, uses libm only on
-// the rare wedge and tail branches, and can later be vectorised without changing a single bit.
+// the rare wedge and tail branches (the plume's random walk has its own vectorised sampler).
 constexpr int kLayers = 128;
 constexpr double kR = 3.442619855899;       // start of the tail
 constexpr double kV = 9.91256303526217e-3;  // area of each layer

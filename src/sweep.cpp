@@ -77,7 +77,7 @@ std::string plume_key(const Scenario& scenario) {
 }
 
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
-                                  std::uint64_t trial) {
+                                  std::uint64_t trial, const ControllerFactory& factory) {
   std::vector<RunResult> results;
   if (scenarios.empty()) return results;
   const Scenario& first = *scenarios.front();
@@ -87,9 +87,8 @@ std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios,
     if (plume_key(*s) != key) {
       throw std::invalid_argument("run_shared: the scenarios do not share one plume");
     }
-    agents.push_back(std::make_unique<Agent>(
-        *s, seed, trial,
-        make_controller(s->controller, Rng(derive_seed(seed, trial, Stream::kController)))));
+    agents.push_back(
+        std::make_unique<Agent>(*s, seed, trial, make_run_controller(*s, seed, trial, factory)));
   }
   const auto wind = make_wind_field(first.wind);
   Plume plume = make_plume(first, seed, trial);
@@ -192,8 +191,10 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
       const RunTask& first = tasks[units[u].front()];
       const std::uint64_t seed = sweeps[static_cast<std::size_t>(first.sweep)].def.seed;
       const std::vector<RunResult> results =
-          scenarios.size() == 1 ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial)}
-                                : run_shared(scenarios, seed, first.trial);
+          scenarios.size() == 1
+              ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial, {},
+                                                options.make_controller)}
+              : run_shared(scenarios, seed, first.trial, options.make_controller);
       std::vector<RunRow> rows;
       for (std::size_t k = 0; k < results.size(); ++k) {
         const RunTask& t = tasks[units[u][k]];

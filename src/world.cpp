@@ -113,10 +113,15 @@ double warm_up(const Scenario& scenario, const WindField& wind, Plume& plume) {
   return static_cast<double>(steps) * scenario.sim.dt;
 }
 
+std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::uint64_t seed,
+                                                std::uint64_t trial,
+                                                const ControllerFactory& factory) {
+  Rng rng(derive_seed(seed, trial, Stream::kController));
+  return factory ? factory(scenario, rng) : make_controller(scenario.controller, rng);
+}
+
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial)
-    : World(scenario, seed, trial,
-            make_controller(scenario.controller,
-                            Rng(derive_seed(seed, trial, Stream::kController)))) {}
+    : World(scenario, seed, trial, make_run_controller(scenario, seed, trial)) {}
 
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
              std::unique_ptr<Controller> controller)
@@ -135,8 +140,8 @@ void World::step() {
 }
 
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
-                   const StepObserver& observer) {
-  World world(scenario, seed, trial);
+                   const StepObserver& observer, const ControllerFactory& factory) {
+  World world(scenario, seed, trial, make_run_controller(scenario, seed, trial, factory));
   if (observer) observer(world);
   while (!world.done()) {
     world.step();

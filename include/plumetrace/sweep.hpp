@@ -77,7 +77,7 @@ std::string plume_key(const Scenario& scenario);
 /// robot); every scenario must have the same plume_key. The results equal run_once of each
 /// scenario, bit for bit.
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
-                                  std::uint64_t trial);
+                                  std::uint64_t trial, const ControllerFactory& factory = {});
 
 /// One run of a campaign and its result.
 struct RunRow {
@@ -108,6 +108,9 @@ struct CampaignOptions {
   /// Simulate one plume per (plume configuration, seed, trial) and drive every robot that uses
   /// it on it (results are bit-identical to separate runs; only faster).
   bool share_plumes = true;
+  /// Builds each run's controller (empty: the scenario's built-in algorithm). It is called
+  /// from the worker threads.
+  ControllerFactory make_controller;
 };
 
 /// What a campaign call did.

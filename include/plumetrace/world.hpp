@@ -106,6 +106,16 @@ class Agent {
   Outcome outcome_ = Outcome::kRunning;
 };
 
+/// Builds a run's controller from its scenario and its controller stream; the extension point
+/// for controllers of your own (C++ or Python), used by runs and sweeps alike.
+using ControllerFactory = std::function<std::unique_ptr<Controller>(const Scenario&, Rng)>;
+
+/// The controller of run (seed, trial): `factory`'s when given, else the scenario's built-in
+/// algorithm; either gets the run's controller stream.
+std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::uint64_t seed,
+                                                std::uint64_t trial,
+                                                const ControllerFactory& factory = {});
+
 /// The plume of a scenario and trial, before its warm-up.
 Plume make_plume(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
 
@@ -162,8 +172,9 @@ class World {
 /// Called after the warm-up and after every step of a run.
 using StepObserver = std::function<void(const World&)>;
 
-/// Runs one whole run: a pure function of (scenario, seed, trial).
+/// Runs one whole run: a pure function of (scenario, seed, trial) and the controller factory
+/// (empty: the scenario's built-in algorithm).
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
-                   const StepObserver& observer = {});
+                   const StepObserver& observer = {}, const ControllerFactory& factory = {});
 
 }  // namespace plumetrace

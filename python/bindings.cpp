@@ -1,0 +1,325 @@
+// plumetrace._core: thin pybind11 bindings of the C++ library. The model lives in the library;
+// this file converts arguments and results and releases the GIL around long computations.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plumetrace/campaign.hpp"
+#include "plumetrace/controller.hpp"
+#include "plumetrace/controllers.hpp"
+#include "plumetrace/io.hpp"
+#include "plumetrace/scenario.hpp"
+#include "plumetrace/sweep.hpp"
+#include "plumetrace/trace.hpp"
+#include "plumetrace/world.hpp"
+
+namespace py = pybind11;
+namespace pt = plumetrace;
+
+namespace {
+
+// settings of a scenario file (if any) then of the given overrides, in order
+std::vector<pt::Setting> settings_of(const std::optional<std::string>& path,
+                                     const std::vector<std::pair<std::string, pt::ConfigValue>>&
+                                         overrides) {
+  std::vector<pt::Setting> settings;
+  if (path) settings = pt::read_scenario_file(*path);
+  for (const auto& [key, value] : overrides) {
+    pt::Setting s;
+    s.key = key;
+    s.value = value;
+    s.origin = "Python";
+    s.layer = pt::Layer::kCommandLine;
+    settings.push_back(std::move(s));
+  }
+  return settings;
+}
+
+using Overrides = std::vector<std::pair<std::string, pt::ConfigValue>>;
+
+pt::Scenario scenario_of(const std::optional<std::string>& path, const Overrides& overrides) {
+  return pt::build_scenario(settings_of(path, overrides));
+}
+
+template <class T>
+py::array_t<T> to_array(const std::vector<T>& values) {
+  return py::array_t<T>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+// a trace as NumPy columns (and the controller states as a list of str)
+py::dict trace_columns(const pt::Trace& trace) {
+  std::vector<double> t, x, y, heading, odometer, concentration, wind_x, wind_y;
+  std::vector<std::uint8_t> odor;
+  std::vector<std::int32_t> wind_samples;
+  py::list state;
+  for (const pt::TraceStep& s : trace.steps) {
+    t.push_back(s.time);
+    x.push_back(s.pose.x);
+    y.push_back(s.pose.y);
+    heading.push_back(s.pose.heading);
+    odometer.push_back(s.odometer);
+    concentration.push_back(s.concentration);
+    odor.push_back(s.odor ? 1 : 0);
+    wind_samples.push_back(s.wind_samples);
+    wind_x.push_back(s.wind_samples > 0 ? s.wind_body.x : NAN);
+    wind_y.push_back(s.wind_samples > 0 ? s.wind_body.y : NAN);
+    state.append(s.state);
+  }
+  py::dict d;
+  d["time"] = to_array(t);
+  d["x"] = to_array(x);
+  d["y"] = to_array(y);
+  d["heading"] = to_array(heading);
+  d["odometer"] = to_array(odometer);
+  d["odor"] = to_array(odor).attr("astype")("bool");
+  d["concentration"] = to_array(concentration);
+  d["wind_samples"] = to_array(wind_samples);
+  d["wind_x"] = to_array(wind_x);
+  d["wind_y"] = to_array(wind_y);
+  d["state"] = state;
+  return d;
+}
+
+// the filament snapshots of a trace as a list of dicts of arrays
+py::list snapshot_list(const pt::Trace& trace) {
+  py::list out;
+  for (const pt::FilamentSnapshot& s : trace.snapshots) {
+    py::dict d;
+    d["time"] = s.time;
+    d["x"] = to_array(s.x);
+    d["y"] = to_array(s.y);
+    d["z"] = to_array(s.z);
+    d["w"] = to_array(s.w);
+    out.append(d);
+  }
+  return out;
+}
+
+// A controller written in Python: an object with step(observation, wind) -> Command and
+// optional state() -> str and losses() -> int. Calls take the GIL.
+class PyController : public pt::Controller {
+ public:
+  // constructed with the GIL held
+  explicit PyController(py::object impl) : impl_(std::move(impl)) { refresh(); }
+  ~PyController() override {
+    py::gil_scoped_acquire gil;
+    impl_ = py::object();
+  }
+
+  pt::Command step(const pt::Observation& obs, pt::WindProbe& wind) override {
+    py::gil_scoped_acquire gil;
+    py::object command =
+        impl_.attr("step")(obs, py::cast(&wind, py::return_value_policy::reference));
+    refresh();
+    return command.cast<pt::Command>();
+  }
+  std::string_view state() const override { return state_; }
+  int losses() const override { return losses_; }
+
+ private:
+  // the state name and loss count the Python object reports, if it has them
+  void refresh() {
+    if (py::hasattr(impl_, "state")) state_ = py::str(call_or_value("state")).cast<std::string>();
+    if (py::hasattr(impl_, "losses")) losses_ = call_or_value("losses").cast<int>();
+  }
+  py::object call_or_value(const char* name) {
+    py::object v = impl_.attr(name);
+    return PyCallable_Check(v.ptr()) ? v() : v;
+  }
+
+  py::object impl_;
+  std::string state_ = "python";
+  int losses_ = 0;
+};
+
+// A controller factory calling the Python `factory(scenario_dict, rng)` for each run; empty
+// for None (the scenario's built-in algorithm).
+pt::ControllerFactory python_factory(py::object factory) {
+  if (factory.is_none()) return {};
+  auto shared = std::make_shared<py::object>(std::move(factory));
+  return [shared](const pt::Scenario& scenario, pt::Rng rng) -> std::unique_ptr<pt::Controller> {
+    py::gil_scoped_acquire gil;
+    py::object impl = (*shared)(py::module_::import("json").attr("loads")(
+                                    pt::scenario_to_json(scenario)),
+                                rng);
+    return std::make_unique<PyController>(std::move(impl));
+  };
+}
+
+// one run, optionally traced, optionally with a Python controller
+py::dict run(const std::optional<std::string>& path, const Overrides& overrides,
+             std::uint64_t seed, std::uint64_t trial, bool trace, double snapshot_interval,
+             py::object controller_factory) {
+  const pt::Scenario scenario = scenario_of(path, overrides);
+  const pt::ControllerFactory factory = python_factory(std::move(controller_factory));
+  pt::Trace recorded;
+  pt::RunResult result;
+  {
+    py::gil_scoped_release release;
+      pt::World world(scenario, seed, trial, pt::make_run_controller(scenario, seed, trial, factory));
+    pt::TraceRecorder recorder(recorded, snapshot_interval, scenario.sim.dt);
+    if (trace) recorder(world);
+    while (!world.done()) {
+      world.step();
+      if (trace) recorder(world);
+    }
+    result = world.result();
+  }
+  const std::string algorithm =
+      factory ? "python" : std::string(pt::algorithm_name(scenario.controller.algorithm));
+  py::dict out = py::module_::import("json").attr("loads")(
+      pt::result_to_json(result, {algorithm, seed, trial}));
+  if (trace) {
+    out["trajectory"] = trace_columns(recorded);
+    out["snapshots"] = snapshot_list(recorded);
+  }
+  return out;
+}
+
+// every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial)
+py::dict sweep(const std::string& path, const Overrides& overrides, int runs, int threads,
+               bool share_plumes, py::object controller_factory) {
+  std::vector<pt::Setting> settings = settings_of(std::nullopt, overrides);
+  const std::vector<pt::ExpandedSweep> sweeps = {
+      pt::expand_sweep(pt::read_sweep_file(path), settings)};
+  const std::vector<pt::RunTask> tasks = pt::missing_runs(sweeps, {}, runs);
+  pt::CampaignOptions options;
+  options.threads = threads;
+  options.share_plumes = share_plumes;
+  options.make_controller = python_factory(std::move(controller_factory));
+  std::vector<pt::RunRow> rows;
+  {
+    py::gil_scoped_release release;
+    pt::run_tasks(sweeps, tasks, options, [&rows](const std::vector<pt::RunRow>& batch) {
+      rows.insert(rows.end(), batch.begin(), batch.end());
+    });
+  }
+  std::sort(rows.begin(), rows.end(), [](const pt::RunRow& a, const pt::RunRow& b) {
+    return std::tie(a.point, a.trial) < std::tie(b.point, b.trial);
+  });
+  // columns: point, axis values, trial, seed and every metric
+  const pt::ExpandedSweep& s = sweeps.front();
+  py::dict columns;
+  std::vector<std::int64_t> point, trial, losses, steps, wind_samples;
+  std::vector<std::uint64_t> seed;
+  std::vector<std::uint8_t> success;
+  std::vector<double> time, d_t, d_u, overhead, odor_fraction;
+  py::list outcome;
+  std::vector<py::list> axis_values(s.def.axes.size());
+  for (const pt::RunRow& r : rows) {
+    point.push_back(r.point);
+    trial.push_back(static_cast<std::int64_t>(r.trial));
+    seed.push_back(r.result.seed);
+    outcome.append(std::string(pt::outcome_name(r.result.outcome)));
+    success.push_back(r.result.outcome == pt::Outcome::kSuccess ? 1 : 0);
+    time.push_back(r.result.time);
+    d_t.push_back(r.result.d_t);
+    d_u.push_back(r.result.d_u);
+    overhead.push_back(r.result.overhead);
+    losses.push_back(r.result.losses);
+    odor_fraction.push_back(r.result.odor_fraction);
+    steps.push_back(r.result.steps);
+    wind_samples.push_back(r.result.wind_samples);
+    const pt::SweepPoint& p = s.points[static_cast<std::size_t>(r.point)];
+    for (std::size_t a = 0; a < axis_values.size(); ++a) {
+      std::visit([&](const auto& v) { axis_values[a].append(v); }, p.values[a]);
+    }
+  }
+  columns["point"] = to_array(point);
+  for (std::size_t a = 0; a < axis_values.size(); ++a) {
+    columns[py::str(s.def.axes[a].key)] = axis_values[a];
+  }
+  columns["trial"] = to_array(trial);
+  columns["seed"] = to_array(seed);
+  columns["outcome"] = outcome;
+  columns["success"] = to_array(success).attr("astype")("bool");
+  columns["time_s"] = to_array(time);
+  columns["d_t"] = to_array(d_t);
+  columns["d_u"] = to_array(d_u);
+  columns["overhead"] = to_array(overhead);
+  columns["losses"] = to_array(losses);
+  columns["odor_fraction"] = to_array(odor_fraction);
+  columns["steps"] = to_array(steps);
+  columns["wind_samples"] = to_array(wind_samples);
+  py::dict out;
+  out["name"] = s.def.name;
+  out["columns"] = columns;
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "plumetrace C++ core (use the plumetrace package, not this module)";
+  m.attr("__version__") = std::string(pt::version());
+
+  py::register_exception<pt::ConfigError>(m, "ConfigError", PyExc_ValueError);
+  py::register_exception<pt::IoError>(m, "IoError", PyExc_OSError);
+
+  m.def(
+      "resolve_json",
+      [](const std::optional<std::string>& path, const Overrides& overrides) {
+        return pt::scenario_to_json(scenario_of(path, overrides));
+      },
+      "the resolved scenario as JSON");
+  m.def(
+      "resolve_toml",
+      [](const std::optional<std::string>& path, const Overrides& overrides) {
+        return pt::scenario_to_toml(scenario_of(path, overrides));
+      },
+      "the resolved scenario as TOML");
+  m.def("algorithms", [] {
+    std::vector<std::string> names;
+    for (const pt::Algorithm a : pt::all_algorithms()) names.emplace_back(pt::algorithm_name(a));
+    return names;
+  });
+  m.def("run", &run, py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"),
+        py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"));
+  m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"),
+        py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
+
+  // the controller interface (measurement.hpp): what a Python controller sees and returns
+  py::class_<pt::Pose>(m, "Pose")
+      .def_readonly("x", &pt::Pose::x)
+      .def_readonly("y", &pt::Pose::y)
+      .def_readonly("heading", &pt::Pose::heading);
+  py::class_<pt::Observation>(m, "Observation")
+      .def_readonly("time", &pt::Observation::time)
+      .def_readonly("odor", &pt::Observation::odor)
+      .def_readonly("odometry", &pt::Observation::odometry)
+      .def_readonly("odometer", &pt::Observation::odometer);
+  py::class_<pt::WindProbe>(m, "WindProbe")
+      .def("measure_wind_body", [](pt::WindProbe& w) {
+        const pt::Vec2 v = w.measure_wind_body();
+        return py::make_tuple(v.x, v.y);
+      });
+  py::class_<pt::Command>(m, "Command")
+      .def_static("stop", &pt::Command::stop)
+      .def_static("turn_to", &pt::Command::turn_to, py::arg("heading"))
+      .def_static("go", &pt::Command::go, py::arg("heading"))
+      .def_static("curve", &pt::Command::curve, py::arg("curvature"))
+      .def_static("abandon", &pt::Command::abandon)
+      .def_readonly("heading", &pt::Command::heading)
+      .def_readonly("curvature", &pt::Command::curvature)
+      .def_readonly("give_up", &pt::Command::give_up);
+  py::class_<pt::Rng>(m, "Rng")
+      .def("uniform", &pt::Rng::uniform)
+      .def("normal", py::overload_cast<>(&pt::Rng::normal))
+      .def("sign", &pt::Rng::sign);
+  m.def(
+      "upwind_heading",
+      [](std::pair<double, double> wind_body, double robot_heading) {
+        return pt::upwind_heading({wind_body.first, wind_body.second}, robot_heading);
+      },
+      py::arg("wind_body"), py::arg("robot_heading"));
+  m.def("guess_plume_side", &pt::guess_plume_side, py::arg("surge_heading"),
+        py::arg("upwind_now"), py::arg("rng"));
+  m.def("wrap_angle", &pt::wrap_angle);
+}

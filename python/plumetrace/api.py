@@ -1,0 +1,204 @@
+"""Scenarios, runs and sweeps: the Python face of the C++ core (no model logic here)."""
+
+import json
+
+from . import _core
+
+ConfigError = _core.ConfigError
+__version__ = _core.__version__
+
+
+def algorithms():
+    """Names of the built-in algorithms."""
+    return list(_core.algorithms())
+
+
+class Scenario:
+    """A scenario: an optional TOML file plus overrides, resolved and validated by the core.
+
+    Read and change any key by its dotted path (``s["wind.vx"]``) or as nested attributes
+    (``s.wind.vx``); an unknown key or a bad value raises ``ConfigError`` naming the key.
+    """
+
+    def __init__(self, path=None, **overrides):
+        object.__setattr__(self, "_path", None if path is None else str(path))
+        object.__setattr__(self, "_overrides", [])
+        object.__setattr__(self, "_resolved", None)
+        self.update(_dotted(overrides))
+
+    @classmethod
+    def load(cls, path):
+        """The scenario of a TOML file."""
+        return cls(path)
+
+    def copy(self):
+        """An independent copy."""
+        other = Scenario(self._path)
+        other.update(dict(self._overrides))
+        return other
+
+    def update(self, settings):
+        """Sets several dotted keys at once (a dict); checked together."""
+        added = [(str(k), _config_value(v)) for k, v in dict(settings).items()]
+        resolved = _load_json(_core.resolve_json(self._path, self._overrides + added))
+        self._overrides.extend(added)
+        object.__setattr__(self, "_resolved", resolved)
+
+    def to_dict(self):
+        """The fully resolved configuration as a nested dict (as `plumetrace config --json`, with
+        infinite numbers as float('inf') where JSON has the string "inf")."""
+        if self._resolved is None:
+            object.__setattr__(self, "_resolved", _load_json(_core.resolve_json(self._path, self._overrides)))
+        return json.loads(json.dumps(self._resolved))
+
+    def to_toml(self):
+        """The fully resolved configuration as TOML (reads back to the same scenario)."""
+        return _core.resolve_toml(self._path, self._overrides)
+
+    def __getitem__(self, key):
+        node = self.to_dict()
+        for part in str(key).split("."):
+            if not isinstance(node, dict) or part not in node:
+                raise ConfigError(f"unknown config key '{key}'")
+            node = node[part]
+        return node
+
+    def __setitem__(self, key, value):
+        self.update({key: value})
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        value = self[name]
+        return _Section(self, name) if isinstance(value, dict) else value
+
+    def __setattr__(self, name, value):
+        self[name] = value
+
+    def __repr__(self):
+        return f"Scenario({self._path!r}, {dict(self._overrides)!r})"
+
+    def _settings(self):
+        return self._path, list(self._overrides)
+
+
+class _Section:
+    """A table of a scenario, for attribute access (``s.wind.vx``)."""
+
+    def __init__(self, scenario, prefix):
+        object.__setattr__(self, "_scenario", scenario)
+        object.__setattr__(self, "_prefix", prefix)
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        key = f"{self._prefix}.{name}"
+        value = self._scenario[key]
+        return _Section(self._scenario, key) if isinstance(value, dict) else value
+
+    def __setattr__(self, name, value):
+        self._scenario[f"{self._prefix}.{name}"] = value
+
+    def __repr__(self):
+        return f"<{self._prefix}: {self._scenario[self._prefix]!r}>"
+
+
+def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_interval=0.0,
+        controller=None, overrides=None, **kwargs):
+    """One run. Returns a dict with the keys of `plumetrace run --json` and, with `trace`,
+    ``trajectory`` (NumPy arrays per step: time, x, y, heading, odometer, odor,
+    concentration, wind_samples, wind_x, wind_y, and state names) and ``snapshots``
+    (filaments every `snapshot_interval` s).
+
+    `scenario`: a Scenario, a TOML path or None (defaults). `overrides` (dict of dotted keys)
+    and keyword arguments (``wind_sensor__sigma_a=0.3`` for ``wind_sensor.sigma_a``) change
+    keys for this run. `controller`: a factory ``f(scenario_dict, rng)`` returning an object
+    with ``step(observation, wind) -> Command`` (see plumetrace.controllers) instead of the
+    scenario's algorithm.
+    """
+    path, settings = _settings(scenario, algorithm, overrides, kwargs)
+    return _core.run(path, settings, int(seed), int(trial), bool(trace), float(snapshot_interval),
+                     controller)
+
+
+def sweep(path, runs=0, threads=0, share_plumes=True, controller=None, overrides=None, **kwargs):
+    """Every run of a sweep file (the format `plumetrace sweep` reads), in C++ threads with
+    the GIL released. `runs`: runs per point (0: the file's); `threads`: 0 for all cores;
+    `overrides`/keyword arguments change keys of the base scenario (not an axis key);
+    `controller`: as in run(). Returns SweepRows, sorted by (point, trial)."""
+    settings = [(str(k), _config_value(v)) for k, v in _dotted({**(overrides or {}), **kwargs}).items()]
+    out = _core.sweep(str(path), settings, int(runs), int(threads), bool(share_plumes), controller)
+    return SweepRows(out["name"], out["columns"])
+
+
+class SweepRows:
+    """The rows of a sweep as columns: ``rows["d_t"]``, ``rows.to_numpy()``, ``rows.to_pandas()``."""
+
+    def __init__(self, name, columns):
+        self.name = name
+        self.columns = columns
+
+    def __len__(self):
+        return len(self.columns["point"])
+
+    def __getitem__(self, key):
+        return self.columns[key]
+
+    def keys(self):
+        return list(self.columns)
+
+    def __iter__(self):
+        for i in range(len(self)):
+            yield {k: _item(v[i]) for k, v in self.columns.items()}
+
+    def to_numpy(self):
+        """A dict of NumPy arrays, one per column."""
+        import numpy as np
+
+        return {k: np.asarray(v) for k, v in self.columns.items()}
+
+    def to_pandas(self):
+        """A pandas DataFrame (needs pandas)."""
+        import pandas as pd
+
+        return pd.DataFrame(self.to_numpy())
+
+
+def _load_json(text):
+    # why: JSON has no infinity; the core writes an infinite number (plume.cutoff) as "inf"
+    def number(v):
+        if isinstance(v, dict):
+            return {k: number(x) for k, x in v.items()}
+        return float(v) if v in ("inf", "-inf") else v
+
+    return number(json.loads(text))
+
+
+def _item(v):
+    return v.item() if hasattr(v, "item") else v
+
+
+def _dotted(kwargs):
+    return {k.replace("__", "."): v for k, v in kwargs.items()}
+
+
+def _config_value(value):
+    # why: the core takes bool, int, float or str; NumPy scalars and the like become those
+    if isinstance(value, (bool, int, float, str)):
+        return value
+    if hasattr(value, "item"):
+        return value.item()
+    raise ConfigError(f"value {value!r} is not a number, bool or string")
+
+
+def _settings(scenario, algorithm, overrides, kwargs):
+    if scenario is None:
+        path, settings = None, []
+    elif isinstance(scenario, Scenario):
+        path, settings = scenario._settings()
+    else:
+        path, settings = str(scenario), []
+    extra = _dotted({**(overrides or {}), **kwargs})
+    if algorithm is not None:
+        extra["controller.algorithm"] = algorithm
+    return path, settings + [(k, _config_value(v)) for k, v in extra.items()]

@@ -1,0 +1,127 @@
+"""The Python API against the command line: same scenarios, same runs, same sweeps."""
+
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pt = pytest.importorskip("plumetrace._core") and __import__("plumetrace")
+
+ROOT = Path(__file__).resolve().parents[2]
+CLI = os.environ.get("PLUMETRACE_CLI", str(ROOT / "build" / "plumetrace"))
+GOLDEN = ROOT / "tests" / "golden" / "sweep.toml"
+
+
+def cli(*args):
+    return subprocess.run([CLI, *map(str, args)], check=True, capture_output=True, text=True).stdout
+
+
+def test_default_scenario_resolves_like_plumetrace_config():
+    assert pt.Scenario().to_dict() == json.loads(cli("config", "--json"))
+
+
+def test_keys_read_and_change_by_dotted_path_or_attribute():
+    s = pt.Scenario()
+    assert s["wind.vx"] == 1.0 and s.wind.vx == 1.0
+    s.wind_sensor.sigma_a = 0.45
+    s["controller.algorithm"] = "surge-spiral"
+    assert s["wind_sensor.sigma_a"] == 0.45
+    assert s.controller.algorithm == "surge-spiral"
+    assert s.to_dict()["wind_sensor"]["sigma_a"] == 0.45
+    # the TOML it prints reads back to the same scenario
+    path = Path(os.environ.get("TMPDIR", "/tmp")) / f"pt_api_{os.getpid()}.toml"
+    path.write_text(s.to_toml())
+    assert pt.Scenario.load(path).to_dict() == s.to_dict()
+
+
+def test_a_scenario_file_loads_with_its_preset():
+    s = pt.Scenario.load(ROOT / "scenarios" / "paper-literal.toml")
+    assert s.plume.kernel == "printed"
+    assert math.isinf(s.plume.cutoff)
+
+
+@pytest.mark.parametrize("key, value, named", [
+    ("wind.vxx", 1.0, "wind.vxx"),
+    ("controller.algorithm", "zigzag", "controller.algorithm"),
+    ("sim.dt", -1.0, "sim.dt"),
+    ("plume.capacity", 2.5, "plume.capacity"),
+])
+def test_invalid_keys_and_values_raise_naming_the_key(key, value, named):
+    s = pt.Scenario()
+    with pytest.raises(pt.ConfigError, match=named.replace(".", r"\.")):
+        s[key] = value
+    # the scenario is unchanged by the refused setting
+    assert s.to_dict() == pt.Scenario().to_dict()
+
+
+def test_unknown_key_on_read_raises():
+    with pytest.raises(pt.ConfigError, match="nope"):
+        pt.Scenario()["wind.nope"]
+
+
+def test_run_equals_the_command_line_run():
+    for algorithm, seed, trial in [("casting", 3, 2), ("surge-spiral", 11, 0), ("surge-cast", 5, 4)]:
+        mine = pt.run(algorithm=algorithm, seed=seed, trial=trial, wind_sensor__sigma_a=0.3)
+        theirs = json.loads(cli("run", "--algorithm", algorithm, "--seed", seed, "--trial", trial,
+                                "--set", "wind_sensor.sigma_a=0.3", "--json"))
+        traj = mine.pop("trajectory")
+        mine.pop("snapshots")
+        assert mine == theirs
+        # the trajectory: one row at release, then one per step, as NumPy arrays
+        assert len(traj["x"]) == mine["steps"] + 1 == len(traj["state"])
+        assert traj["x"][0] == pt.Scenario()["robot.start_x"]
+        assert isinstance(traj["odor"], np.ndarray) and traj["odor"].dtype == bool
+        assert np.all(np.diff(traj["time"]) > 0)
+        assert traj["odometer"][-1] == pytest.approx(mine["d_t"], abs=1e-12)
+
+
+def test_snapshots_hold_the_filaments():
+    r = pt.run(seed=2, snapshot_interval=5.0, supervisor__timeout=12.0)
+    assert r["snapshots"], "no snapshot"
+    first = r["snapshots"][0]
+    assert len(first["x"]) == 1600 and first["time"] == 0.0
+
+
+def read_runs_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_sweep_equals_the_command_line_sweep(tmp_path):
+    rows = pt.sweep(GOLDEN, runs=3, threads=2)
+    cli("sweep", GOLDEN, "--runs", 3, "--out", tmp_path, "--quiet", "--threads", 2)
+    theirs = sorted(read_runs_csv(tmp_path / "runs.csv"), key=lambda r: (int(r["point"]), int(r["trial"])))
+    assert len(rows) == len(theirs) == 18
+    for mine, row in zip(rows, theirs):
+        assert mine["point"] == int(row["point"]) and mine["trial"] == int(row["trial"])
+        assert mine["outcome"] == row["outcome"]
+        assert mine["controller.algorithm"] == row["controller.algorithm"]
+        for key in ("d_t", "d_u", "time_s", "odor_fraction"):
+            assert mine[key] == float(row[key]), key
+        assert mine["steps"] == int(row["steps"]) and mine["losses"] == int(row["losses"])
+
+
+def test_sweep_rows_do_not_depend_on_threads_or_plume_sharing():
+    one = pt.sweep(GOLDEN, runs=2, threads=1, share_plumes=False).to_numpy()
+    two = pt.sweep(GOLDEN, runs=2, threads=2).to_numpy()
+    for key in one:
+        assert np.array_equal(one[key], two[key], equal_nan=key == "overhead") if one[key].dtype.kind == "f" else np.array_equal(one[key], two[key]), key
+
+
+def test_sweep_rows_convert_to_numpy_and_pandas():
+    rows = pt.sweep(GOLDEN, runs=1)
+    arrays = rows.to_numpy()
+    assert arrays["d_t"].dtype == np.float64 and len(arrays["success"]) == 6
+    try:
+        import pandas  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError):
+            rows.to_pandas()
+    else:
+        assert list(rows.to_pandas().columns) == rows.keys()

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -153,6 +154,17 @@ pt::ControllerFactory python_factory(py::object factory) {
   };
 }
 
+// The controller of a run decided from outside (a learning agent drives it through
+// World::observe and World::act); it is never asked to decide.
+class ExternalController : public pt::Controller {
+ public:
+  pt::Command step(const pt::Observation&, pt::WindProbe&) override {
+    throw std::logic_error("an externally driven run steps through observe() and act()");
+  }
+  std::string_view state() const override { return "external"; }
+  int losses() const override { return 0; }
+};
+
 // one run, optionally traced, optionally with a Python controller
 py::dict run(const std::optional<std::string>& path, const Overrides& overrides,
              std::uint64_t seed, std::uint64_t trial, bool trace, double snapshot_interval,
@@ -285,6 +297,37 @@ PYBIND11_MODULE(_core, m) {
   m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"),
         py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
 
+  // a run driven step by step from Python (plumetrace.env)
+  py::class_<pt::World>(m, "World")
+      .def(py::init([](const std::optional<std::string>& path, const Overrides& overrides,
+                       std::uint64_t seed, std::uint64_t trial) {
+             const pt::Scenario scenario = scenario_of(path, overrides);
+             py::gil_scoped_release release;
+             return std::make_unique<pt::World>(scenario, seed, trial,
+                                                std::make_unique<ExternalController>());
+           }),
+           py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"))
+      .def("observe", &pt::World::observe, "environment step and sensing")
+      .def("act", &pt::World::act, "decision, move and check")
+      .def("measure_wind_body",
+           [](pt::World& w) {
+             const pt::Vec2 v = w.wind_probe().measure_wind_body();
+             return py::make_tuple(v.x, v.y);
+           })
+      .def("done", &pt::World::done)
+      .def("time", &pt::World::time)
+      .def("outcome", [](const pt::World& w) { return std::string(pt::outcome_name(w.outcome())); })
+      .def("pose",
+           [](const pt::World& w) {
+             const pt::Pose& p = w.robot().pose;
+             return py::make_tuple(p.x, p.y, p.heading);
+           })
+      .def("odometer", [](const pt::World& w) { return w.robot().odometer; })
+      .def("result_json", [](const pt::World& w) {
+        const pt::RunResult r = w.result();
+        return pt::result_to_json(r, {"external", r.seed, r.trial});
+      });
+
   // the controller interface (measurement.hpp): what a Python controller sees and returns
   py::class_<pt::Pose>(m, "Pose")
       .def_readonly("x", &pt::Pose::x)
@@ -313,6 +356,12 @@ PYBIND11_MODULE(_core, m) {
       .def("uniform", &pt::Rng::uniform)
       .def("normal", py::overload_cast<>(&pt::Rng::normal))
       .def("sign", &pt::Rng::sign);
+  m.def(
+      "controller_rng",
+      [](std::uint64_t seed, std::uint64_t trial) {
+        return pt::Rng(pt::derive_seed(seed, trial, pt::Stream::kController));
+      },
+      py::arg("seed"), py::arg("trial"), "the controller random stream of run (seed, trial)");
   m.def(
       "upwind_heading",
       [](std::pair<double, double> wind_body, double robot_heading) {

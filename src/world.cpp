@@ -55,30 +55,30 @@ void Agent::release(const Plume& plume, double warmup_time) {
 
 void Agent::step(const Plume& plume) {
   if (done()) return;
-  const double dt = scenario_.sim.dt;
-  ++steps_;
+  const Observation obs = sense(plume);
+  // decide
+  act(controller_->step(obs, wind_sensor_));
+}
 
-  // sense
+Observation Agent::sense(const Plume& plume) {
+  ++steps_;
   sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
   odor_ = sense_odor(scenario_.odor, plume, robot_.pose);
   if (odor_) ++odor_steps_;
-  // why: odometry starts at the release pose, so a controller cannot read the arena's frame
-  const Pose& start = scenario_.robot.start;
-  const Observation obs{time(), odor_, relative_pose(start, robot_.pose), robot_.odometer};
   wind_sensor_.clear();
   wind_sensor_.set_time(plume_time());
+  // why: odometry starts at the release pose, so a controller cannot read the arena's frame
+  return {time(), odor_, relative_pose(scenario_.robot.start, robot_.pose), robot_.odometer};
+}
 
-  // decide
-  Command command = controller_->step(obs, wind_sensor_);
-  command.heading = wrap_angle(command.heading + start.heading);
+void Agent::act(Command command) {
+  command.heading = wrap_angle(command.heading + scenario_.robot.start.heading);
   if (command.give_up) {
     outcome_ = Outcome::kGaveUp;
     return;
   }
-
   // move
-  step_robot(scenario_.robot, command, dt, robot_);
-
+  step_robot(scenario_.robot, command, scenario_.sim.dt, robot_);
   // check
   outcome_ = supervise(scenario_, robot_, time());
 }
@@ -137,6 +137,11 @@ void World::step() {
   plume_.step(*wind_, agent_.plume_time());
   // the robot: sense, decide, move, check
   agent_.step(plume_);
+}
+
+Observation World::observe() {
+  plume_.step(*wind_, agent_.plume_time());
+  return agent_.sense(plume_);
 }
 
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,

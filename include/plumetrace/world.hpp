@@ -65,6 +65,14 @@ class Agent {
   void release(const Plume& plume, double warmup_time);
   /// One step after the plume has made its own: sense, decide, move, check (SPEC section 2).
   void step(const Plume& plume);
+  /// The first half of a step, for callers that decide outside a Controller (learning agents):
+  /// sense and return what a controller would see. Follow with act().
+  Observation sense(const Plume& plume);
+  /// The second half of a step: the decision (headings in the odometry frame), then move and
+  /// check.
+  void act(Command command);
+  /// The wind sensor, for a decision made outside a Controller (one noisy sample per call).
+  WindProbe& wind_probe() { return wind_sensor_; }
   /// Plume time (s) at which the plume's next step starts.
   double plume_time() const { return warmup_time_ + time(); }
 
@@ -137,6 +145,12 @@ class World {
 
   /// One step: environment, sense, decide, move, check (SPEC section 2).
   void step();
+  /// A step split for a decision made outside the controller: environment and sense ...
+  Observation observe();
+  /// ... then the decision, move and check (see Agent::sense, Agent::act).
+  void act(const Command& command) { agent_.act(command); }
+  /// The wind sensor, for a decision made outside the controller.
+  WindProbe& wind_probe() { return agent_.wind_probe(); }
   /// True once the run has ended.
   bool done() const { return agent_.done(); }
   /// The run's metrics so far.

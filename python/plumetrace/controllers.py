@@ -24,6 +24,7 @@ Command = _core.Command
 upwind_heading = _core.upwind_heading
 guess_plume_side = _core.guess_plume_side
 wrap_angle = _core.wrap_angle
+controller_rng = _core.controller_rng  # controller_rng(seed, trial): the stream runs hand out
 
 
 class Controller:

@@ -17,6 +17,7 @@
 #include "plumetrace/controllers.hpp"
 #include "plumetrace/io.hpp"
 #include "plumetrace/scenario.hpp"
+#include "plumetrace/stats.hpp"
 #include "plumetrace/sweep.hpp"
 #include "plumetrace/trace.hpp"
 #include "plumetrace/world.hpp"
@@ -296,6 +297,22 @@ PYBIND11_MODULE(_core, m) {
         py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"));
   m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"),
         py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
+
+  // the statistics of the report (SPEC section 7)
+  m.def(
+      "wilson_interval",
+      [](std::int64_t k, std::int64_t n) {
+        const pt::Interval i = pt::wilson_interval(k, n);
+        return py::make_tuple(i.lo, i.hi);
+      },
+      py::arg("successes"), py::arg("n"), "Wilson 95% interval of a success rate");
+  m.def(
+      "mean_ci",
+      [](const std::vector<double>& values) {
+        const pt::MeanCi c = pt::mean_ci(values);
+        return py::make_tuple(c.mean, c.lo, c.hi);
+      },
+      py::arg("values"), "mean and its t-based 95% interval");
 
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")

@@ -68,8 +68,12 @@ def test_a_controller_sees_measurements_only():
     assert seen[0][2:] == (0.0, 0.0, 0.0)
 
 
-def test_the_example_runs():
-    env = dict(os.environ)
+def test_the_examples_run(tmp_path):
     out = subprocess.run([sys.executable, str(ROOT / "examples" / "python_surge_cast.py")],
-                         check=True, capture_output=True, text=True, env=env).stdout
+                         check=True, capture_output=True, text=True).stdout
     assert out.count("identical to the built-in: True") == 3
+    out = subprocess.run([sys.executable, str(ROOT / "examples" / "python_env_and_plots.py"),
+                          str(tmp_path)], check=True, capture_output=True, text=True).stdout
+    assert out.count("episode") == 3
+    assert (tmp_path / "trajectory.png").stat().st_size > 10000
+    assert (tmp_path / "sweep.png").stat().st_size > 10000

@@ -1,0 +1,42 @@
+"""The plot helpers draw what they are given (checked on the artists, not by eye)."""
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+pt = pytest.importorskip("plumetrace._core") and __import__("plumetrace")
+from plumetrace import plots  # noqa: E402
+
+GOLDEN = Path(__file__).resolve().parents[2] / "tests" / "golden" / "sweep.toml"
+
+
+def test_trajectory_draws_the_path_by_state_over_the_filaments(tmp_path):
+    r = pt.run(algorithm="surge-cast", seed=2, trial=1, snapshot_interval=5.0)
+    ax = plots.trajectory(r)
+    labels = [line.get_label() for line in ax.get_lines()]
+    for state in set(r["trajectory"]["state"]):
+        assert state in labels
+    # every step of the path is drawn once, in one state's line
+    drawn = sum(np.count_nonzero(~np.isnan(line.get_xdata().astype(float)))
+                for line in ax.get_lines() if line.get_label() in set(r["trajectory"]["state"]))
+    assert drawn == len(r["trajectory"]["x"])
+    assert len(ax.collections[0].get_offsets()) == 1600  # the last snapshot's filaments
+    ax.figure.savefig(tmp_path / "t.png")
+    assert (tmp_path / "t.png").stat().st_size > 10000
+
+
+def test_sweep_bars_show_each_value_with_wilson_and_t_intervals():
+    rows = pt.sweep(GOLDEN, runs=4)
+    fig = plots.sweep_bars(rows, "wind_sensor.sigma_a")
+    left, right = fig.axes
+    heights = [p.get_height() for p in left.patches]
+    cols = rows.to_numpy()
+    for v, h in zip([0.2, 0.6], heights):
+        sel = cols["wind_sensor.sigma_a"] == v
+        assert h == pytest.approx(100 * cols["success"][sel].mean())
+    lo, hi = pt._core.wilson_interval(3, 12)
+    assert 0.0 < lo < 0.25 < hi < 1.0

@@ -125,3 +125,20 @@ def test_sweep_rows_convert_to_numpy_and_pandas():
             rows.to_pandas()
     else:
         assert list(rows.to_pandas().columns) == rows.keys()
+
+
+def test_sweeps_release_the_gil():
+    # while a sweep runs in another Python thread, this thread keeps running Python code;
+    # were the GIL held for the whole sweep, the counter would barely move
+    import threading
+    import time
+
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (pt.sweep(GOLDEN, runs=6, threads=1), done.set()))
+    ticks = 0
+    worker.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    assert ticks > 20

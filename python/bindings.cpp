@@ -27,10 +27,12 @@ namespace pt = plumetrace;
 
 namespace {
 
+// dotted keys and values set from Python, in order
+using Overrides = std::vector<std::pair<std::string, pt::ConfigValue>>;
+
 // settings of a scenario file (if any) then of the given overrides, in order
 std::vector<pt::Setting> settings_of(const std::optional<std::string>& path,
-                                     const std::vector<std::pair<std::string, pt::ConfigValue>>&
-                                         overrides) {
+                                     const Overrides& overrides) {
   std::vector<pt::Setting> settings;
   if (path) settings = pt::read_scenario_file(*path);
   for (const auto& [key, value] : overrides) {
@@ -43,8 +45,6 @@ std::vector<pt::Setting> settings_of(const std::optional<std::string>& path,
   }
   return settings;
 }
-
-using Overrides = std::vector<std::pair<std::string, pt::ConfigValue>>;
 
 pt::Scenario scenario_of(const std::optional<std::string>& path, const Overrides& overrides) {
   return pt::build_scenario(settings_of(path, overrides));
@@ -148,9 +148,8 @@ pt::ControllerFactory python_factory(py::object factory) {
   auto shared = std::make_shared<py::object>(std::move(factory));
   return [shared](const pt::Scenario& scenario, pt::Rng rng) -> std::unique_ptr<pt::Controller> {
     py::gil_scoped_acquire gil;
-    py::object impl = (*shared)(py::module_::import("json").attr("loads")(
-                                    pt::scenario_to_json(scenario)),
-                                rng);
+    py::object impl =
+        (*shared)(py::module_::import("json").attr("loads")(pt::scenario_to_json(scenario)), rng);
     return std::make_unique<PyController>(std::move(impl));
   };
 }
@@ -167,23 +166,18 @@ class ExternalController : public pt::Controller {
 };
 
 // one run, optionally traced, optionally with a Python controller
-py::dict run(const std::optional<std::string>& path, const Overrides& overrides,
-             std::uint64_t seed, std::uint64_t trial, bool trace, double snapshot_interval,
+py::dict run(const std::optional<std::string>& path, const Overrides& overrides, std::uint64_t seed,
+             std::uint64_t trial, bool trace, double snapshot_interval,
              py::object controller_factory) {
   const pt::Scenario scenario = scenario_of(path, overrides);
   const pt::ControllerFactory factory = python_factory(std::move(controller_factory));
   pt::Trace recorded;
+  pt::TraceRecorder recorder(recorded, snapshot_interval, scenario.sim.dt);
   pt::RunResult result;
   {
     py::gil_scoped_release release;
-      pt::World world(scenario, seed, trial, pt::make_run_controller(scenario, seed, trial, factory));
-    pt::TraceRecorder recorder(recorded, snapshot_interval, scenario.sim.dt);
-    if (trace) recorder(world);
-    while (!world.done()) {
-      world.step();
-      if (trace) recorder(world);
-    }
-    result = world.result();
+    result = pt::run_once(scenario, seed, trial,
+                          trace ? pt::StepObserver(std::ref(recorder)) : nullptr, factory);
   }
   const std::string algorithm =
       factory ? "python" : std::string(pt::algorithm_name(scenario.controller.algorithm));
@@ -295,8 +289,8 @@ PYBIND11_MODULE(_core, m) {
   });
   m.def("run", &run, py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"),
         py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"));
-  m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"),
-        py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
+  m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"), py::arg("threads"),
+        py::arg("share_plumes"), py::arg("controller_factory"));
 
   // the statistics of the report (SPEC section 7)
   m.def(
@@ -355,11 +349,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("odor", &pt::Observation::odor)
       .def_readonly("odometry", &pt::Observation::odometry)
       .def_readonly("odometer", &pt::Observation::odometer);
-  py::class_<pt::WindProbe>(m, "WindProbe")
-      .def("measure_wind_body", [](pt::WindProbe& w) {
-        const pt::Vec2 v = w.measure_wind_body();
-        return py::make_tuple(v.x, v.y);
-      });
+  py::class_<pt::WindProbe>(m, "WindProbe").def("measure_wind_body", [](pt::WindProbe& w) {
+    const pt::Vec2 v = w.measure_wind_body();
+    return py::make_tuple(v.x, v.y);
+  });
   py::class_<pt::Command>(m, "Command")
       .def_static("stop", &pt::Command::stop)
       .def_static("turn_to", &pt::Command::turn_to, py::arg("heading"))
@@ -385,7 +378,7 @@ PYBIND11_MODULE(_core, m) {
         return pt::upwind_heading({wind_body.first, wind_body.second}, robot_heading);
       },
       py::arg("wind_body"), py::arg("robot_heading"));
-  m.def("guess_plume_side", &pt::guess_plume_side, py::arg("surge_heading"),
-        py::arg("upwind_now"), py::arg("rng"));
+  m.def("guess_plume_side", &pt::guess_plume_side, py::arg("surge_heading"), py::arg("upwind_now"),
+        py::arg("rng"));
   m.def("wrap_angle", &pt::wrap_angle);
 }

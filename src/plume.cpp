@@ -41,17 +41,16 @@ double kernel_at(double scale, double cut2, double h, double d2) {
 // the concentrations of m filaments at u, one per filament
 template <Kernel kKernel>
 [[gnu::always_inline]] inline void kernel_loop(const Vec3& u, const double* __restrict x,
-                                           const double* __restrict y,
-                                           const double* __restrict z,
-                                           const double* __restrict h, std::int64_t m,
-                                           double scale, double cut2, double* __restrict out) {
+                                               const double* __restrict y,
+                                               const double* __restrict z,
+                                               const double* __restrict h, std::int64_t m,
+                                               double scale, double cut2, double* __restrict out) {
   const double ux = u.x, uy = u.y, uz = u.z;
   for (std::int64_t k = 0; k < m; ++k) {
     const double dx = ux - x[k], dy = uy - y[k], dz = uz - z[k];
     out[k] = kernel_at<kKernel>(scale, cut2, h[k], dx * dx + dy * dy + dz * dz);
   }
 }
-
 
 // why: the vector lambdas below are inlined and never cross a call boundary, so GCC's note that
 // passing 64-byte vectors changes the ABI between clones does not apply
@@ -146,8 +145,8 @@ void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restr
 
 PLUMETRACE_VECTOR_CLONES
 void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
-             const double* __restrict z, const double* __restrict h, std::int64_t m,
-             double scale, Kernel kernel, double cut2, double* __restrict out) {
+             const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
+             Kernel kernel, double cut2, double* __restrict out) {
   if (kernel == Kernel::kGaussian) {
     kernel_loop<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
   } else {
@@ -238,7 +237,7 @@ void Plume::move(const WindField& wind, double t) {
   // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
   const std::uint64_t key = rng_.next_u64();
   loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
-                  static_cast<std::int64_t>(n), drift, key, walk_std_, params_.gamma);
+                         static_cast<std::int64_t>(n), drift, key, walk_std_, params_.gamma);
   if (params_.lifetime == Lifetime::kLeaveArena) {
     // stable compaction keeps the order, so sums stay reproducible
     std::size_t kept = 0;
@@ -334,7 +333,7 @@ double Plume::sum_kernels(const Vec3& u, double stop_at) const {
     if (ex * ex + ey * ey >= cut2) continue;
     const std::size_t m = std::min(kBlock, n - start);
     loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
-            static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+                   static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
     std::size_t k = 0;
     for (; k + kLanes <= m; k += kLanes) {
       for (std::size_t l = 0; l < kLanes; ++l) acc[l] += v[k + l];

@@ -23,7 +23,7 @@ void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restr
 /// The concentration of each of m filaments at u (0 at or beyond the cut-off), given their
 /// inverse widths h and the kernel's amount factor `scale`; cut2 is the squared cut-off.
 void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
-             const double* __restrict z, const double* __restrict h, std::int64_t m,
-             double scale, Kernel kernel, double cut2, double* __restrict out);
+             const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
+             Kernel kernel, double cut2, double* __restrict out);
 
 }  // namespace plumetrace::loops

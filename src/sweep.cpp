@@ -191,10 +191,9 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
       const RunTask& first = tasks[units[u].front()];
       const std::uint64_t seed = sweeps[static_cast<std::size_t>(first.sweep)].def.seed;
       const std::vector<RunResult> results =
-          scenarios.size() == 1
-              ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial, {},
-                                                options.make_controller)}
-              : run_shared(scenarios, seed, first.trial, options.make_controller);
+          scenarios.size() == 1 ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial,
+                                                                  {}, options.make_controller)}
+                                : run_shared(scenarios, seed, first.trial, options.make_controller);
       std::vector<RunRow> rows;
       for (std::size_t k = 0; k < results.size(); ++k) {
         const RunTask& t = tasks[units[u][k]];

@@ -35,8 +35,7 @@ inline float log_f(float u) {
   // log m = 2 atanh(s) = 2 (s + s^3/3 + s^5/5 + ...), |s| <= 0.172
   const float s = (m - 1.0f) / (m + 1.0f);
   const float s2 = s * s;
-  const float p =
-      1.0f + s2 * (1.0f / 3 + s2 * (1.0f / 5 + s2 * (1.0f / 7 + s2 * (1.0f / 9))));
+  const float p = 1.0f + s2 * (1.0f / 3 + s2 * (1.0f / 5 + s2 * (1.0f / 7 + s2 * (1.0f / 9))));
   return static_cast<float>(e) * 0.693147181f + 2.0f * s * p;
 }
 
@@ -53,16 +52,15 @@ inline void normal_pair(std::uint64_t bits, float& a, float& b) {
   // polynomials of Cephes' single-precision sinf and cosf on [-pi/4, pi/4]
   const auto lo = static_cast<std::uint32_t>(bits);
   const std::uint32_t q = lo & 3u;
-  const float f = static_cast<float>(static_cast<std::int32_t>((lo >> 2) & 0x3fffffu)) *
-                      0x1.0p-22f -
-                  0.5f;
+  const float f =
+      static_cast<float>(static_cast<std::int32_t>((lo >> 2) & 0x3fffffu)) * 0x1.0p-22f - 0.5f;
   const float x = f * 1.57079633f, x2 = x * x;
   const float sin_x =
       x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
-  const float cos_x = 1.0f - 0.5f * x2 +
-                      x2 * x2 *
-                          (4.166664568298827e-2f +
-                           x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+  const float cos_x =
+      1.0f - 0.5f * x2 +
+      x2 * x2 *
+          (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
   // rotate by q quarter turns
   const float c = (q & 1u) ? -sin_x : cos_x;
   const float s = (q & 1u) ? cos_x : sin_x;
@@ -88,11 +86,10 @@ inline double exp_neg(double x) {
                           r * (1.0 / 120 +
                                r * (1.0 / 720 +
                                     r * (1.0 / 5040 +
-                                         r * (1.0 / 40320 +
-                                              r * (1.0 / 362880 +
-                                                   r * (1.0 / 3628800 +
-                                                        r * (1.0 / 39916800 +
-                                                             r / 479001600)))))))))));
+                                         r * (1.0 / 40320 + r * (1.0 / 362880 +
+                                                                 r * (1.0 / 3628800 +
+                                                                      r * (1.0 / 39916800 +
+                                                                           r / 479001600)))))))))));
   // 2^k from its exponent bits (meaningful for k >= -1022, that is x >= -708)
   const std::int64_t ki = std::bit_cast<std::int64_t>(t) - std::bit_cast<std::int64_t>(kShift);
   const double scale = std::bit_cast<double>((ki + 1023) << 52);

@@ -62,7 +62,7 @@ TEST(VectorMath, ExpNegMatchesLibmDownToItsFloor) {
 double phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 TEST(VectorMath, NormalPairsFollowTheNormalLawIndependently) {
-  const double edges[] = {-INFINITY, -5.0, -4.0, -3.0, -2.0, -1.0, -0.5, 0.0,
+  const double edges[] = {-INFINITY, -5.0, -4.0, -3.0, -2.0, -1.0, -0.5,    0.0,
                           0.5,       1.0,  2.0,  3.0,  4.0,  5.0,  INFINITY};
   const int bins = static_cast<int>(std::size(edges)) - 1;
   std::vector<long> counts(bins, 0);

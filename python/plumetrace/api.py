@@ -47,9 +47,7 @@ class Scenario:
     def to_dict(self):
         """The fully resolved configuration as a nested dict (as `plumetrace config --json`, with
         infinite numbers as float('inf') where JSON has the string "inf")."""
-        if self._resolved is None:
-            object.__setattr__(self, "_resolved", _load_json(_core.resolve_json(self._path, self._overrides)))
-        return json.loads(json.dumps(self._resolved))
+        return json.loads(json.dumps(self._resolved))  # a copy the caller may change
 
     def to_toml(self):
         """The fully resolved configuration as TOML (reads back to the same scenario)."""

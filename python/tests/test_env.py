@@ -5,7 +5,9 @@ import math
 import numpy as np
 import pytest
 
-pt = pytest.importorskip("plumetrace._core") and __import__("plumetrace")
+from conftest import plumetrace_with_core  # noqa: E402
+
+pt = plumetrace_with_core()
 from plumetrace.env import PlumeEnv  # noqa: E402
 
 

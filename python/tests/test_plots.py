@@ -8,7 +8,9 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-pt = pytest.importorskip("plumetrace._core") and __import__("plumetrace")
+from conftest import plumetrace_with_core  # noqa: E402
+
+pt = plumetrace_with_core()
 from plumetrace import plots  # noqa: E402
 
 GOLDEN = Path(__file__).resolve().parents[2] / "tests" / "golden" / "sweep.toml"

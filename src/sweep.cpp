@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <map>
-#include <mutex>
 #include <stdexcept>
-#include <thread>
 
 #include "plumetrace/io.hpp"
 
@@ -108,22 +105,16 @@ std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios,
   return results;
 }
 
-namespace {
-
-// Work units: groups of tasks that meet the same plume (the same plume configuration, master
-// seed and trial), or single tasks when sharing is off. Deterministic, in task order.
-std::vector<std::vector<std::size_t>> work_units(const std::vector<ExpandedSweep>& sweeps,
-                                                 const std::vector<RunTask>& tasks, bool share,
-                                                 int threads) {
-  std::vector<std::vector<std::size_t>> units;
+std::vector<TaskGroup> plume_groups(const std::vector<ExpandedSweep>& sweeps,
+                                    const std::vector<RunTask>& tasks, bool share) {
+  std::vector<TaskGroup> groups;
   if (!share) {
-    for (std::size_t i = 0; i < tasks.size(); ++i) units.push_back({i});
-    return units;
+    for (const RunTask& t : tasks) groups.push_back({t});
+    return groups;
   }
   std::map<std::pair<int, int>, std::string> point_keys;
-  std::map<std::string, std::size_t> unit_of;
-  for (std::size_t i = 0; i < tasks.size(); ++i) {
-    const RunTask& t = tasks[i];
+  std::map<std::string, std::size_t> group_of;
+  for (const RunTask& t : tasks) {
     const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(t.sweep)];
     auto [it, fresh] = point_keys.try_emplace({t.sweep, t.point});
     if (fresh) {
@@ -131,28 +122,131 @@ std::vector<std::vector<std::size_t>> work_units(const std::vector<ExpandedSweep
     }
     const std::string key =
         it->second + "/" + std::to_string(sweep.def.seed) + "/" + std::to_string(t.trial);
-    auto [u, added] = unit_of.try_emplace(key, units.size());
-    if (added) units.emplace_back();
-    units[u->second].push_back(i);
+    auto [g, added] = group_of.try_emplace(key, groups.size());
+    if (added) groups.emplace_back();
+    groups[g->second].push_back(t);
   }
-  // why: too few plumes for the threads (a sweep of few trials) - split groups so every core
-  // works; each part simulates the plume again, with the same result
-  const std::size_t wanted = 2 * static_cast<std::size_t>(threads);
-  if (units.empty() || units.size() >= wanted) return units;
-  const std::size_t parts = (wanted + units.size() - 1) / units.size();
-  std::vector<std::vector<std::size_t>> split;
-  for (const auto& unit : units) {
-    const std::size_t size = (unit.size() + parts - 1) / parts;
-    for (std::size_t at = 0; at < unit.size(); at += size) {
+  return groups;
+}
+
+std::vector<TaskGroup> split_groups(std::vector<TaskGroup> groups, std::size_t wanted) {
+  if (groups.empty() || groups.size() >= wanted) return groups;
+  const std::size_t parts = (wanted + groups.size() - 1) / groups.size();
+  std::vector<TaskGroup> split;
+  for (const auto& group : groups) {
+    const std::size_t size = (group.size() + parts - 1) / parts;
+    for (std::size_t at = 0; at < group.size(); at += size) {
       split.emplace_back(
-          unit.begin() + static_cast<std::ptrdiff_t>(at),
-          unit.begin() + static_cast<std::ptrdiff_t>(std::min(at + size, unit.size())));
+          group.begin() + static_cast<std::ptrdiff_t>(at),
+          group.begin() + static_cast<std::ptrdiff_t>(std::min(at + size, group.size())));
     }
   }
   return split;
 }
 
-}  // namespace
+std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const TaskGroup& group,
+                              const ControllerFactory& factory) {
+  std::vector<const Scenario*> scenarios;
+  for (const RunTask& t : group) {
+    scenarios.push_back(&sweeps[static_cast<std::size_t>(t.sweep)]
+                             .points[static_cast<std::size_t>(t.point)]
+                             .scenario);
+  }
+  const RunTask& first = group.front();
+  const std::uint64_t seed = sweeps[static_cast<std::size_t>(first.sweep)].def.seed;
+  const std::vector<RunResult> results =
+      scenarios.size() == 1
+          ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial, {}, factory)}
+          : run_shared(scenarios, seed, first.trial, factory);
+  std::vector<RunRow> rows;
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(group[k].sweep)];
+    const SweepPoint& point = sweep.points[static_cast<std::size_t>(group[k].point)];
+    rows.push_back({sweep.def.name, point.index, group[k].trial, point.config_hash, results[k]});
+  }
+  return rows;
+}
+
+GroupPool::GroupPool(const std::vector<ExpandedSweep>& sweeps, int threads,
+                     ControllerFactory factory, const std::atomic<bool>* stop)
+    : sweeps_(sweeps), factory_(std::move(factory)), external_stop_(stop) {
+  threads_.reserve(static_cast<std::size_t>(threads));
+  for (int k = 0; k < threads; ++k) threads_.emplace_back([this] { work(); });
+}
+
+GroupPool::~GroupPool() {
+  {
+    std::lock_guard lock(mutex_);
+    closed_ = true;
+  }
+  work_ready_.notify_all();
+  for (auto& t : threads_) t.join();
+}
+
+void GroupPool::add(std::vector<TaskGroup> groups) {
+  {
+    std::lock_guard lock(mutex_);
+    for (auto& g : groups) queue_.push_back(std::move(g));
+  }
+  work_ready_.notify_all();
+}
+
+std::size_t GroupPool::queued() const {
+  std::lock_guard lock(mutex_);
+  return queue_.size();
+}
+
+GroupPool::Batch GroupPool::take(double timeout) {
+  std::unique_lock lock(mutex_);
+  changed_.wait_for(lock, std::chrono::duration<double>(timeout), [&] { return idle(); });
+  Batch batch;
+  batch.rows.swap(rows_);
+  batch.idle = idle();
+  return batch;
+}
+
+void GroupPool::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  work_ready_.notify_all();
+  changed_.notify_all();
+}
+
+bool GroupPool::stopped() const {
+  return stop_ || (external_stop_ && external_stop_->load());
+}
+
+bool GroupPool::idle() const { return running_ == 0 && (queue_.empty() || stopped()); }
+
+void GroupPool::work() {
+  for (;;) {
+    TaskGroup group;
+    {
+      std::unique_lock lock(mutex_);
+      // why: the external stop flag is set from a signal handler, which cannot notify: look again
+      // every few milliseconds
+      while (!closed_ && !stopped() && queue_.empty()) {
+        work_ready_.wait_for(lock, std::chrono::milliseconds(20));
+      }
+      if (closed_ || stopped()) {
+        changed_.notify_all();
+        return;
+      }
+      group = std::move(queue_.front());
+      queue_.pop_front();
+      ++running_;
+    }
+    std::vector<RunRow> rows = run_group(sweeps_, group, factory_);
+    {
+      std::lock_guard lock(mutex_);
+      for (auto& row : rows) rows_.push_back(std::move(row));
+      --running_;
+    }
+    changed_.notify_all();
+  }
+}
 
 CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                          const std::vector<RunTask>& tasks, const CampaignOptions& options,
@@ -165,84 +259,24 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
-  const auto units = work_units(sweeps, tasks, options.share_plumes, threads);
+  // why: too few plumes for the threads (a sweep of few trials): split groups so every core works
+  GroupPool pool(sweeps, threads, options.make_controller, options.stop);
+  pool.add(split_groups(plume_groups(sweeps, tasks, options.share_plumes),
+                        2 * static_cast<std::size_t>(threads)));
 
-  // workers take the next unit; finished rows wait in `pending` for the calling thread
-  std::atomic<std::size_t> next{0};
-  std::mutex mutex;
-  std::condition_variable wake;
-  std::vector<RunRow> pending;
-  int running = threads;
-  std::atomic<bool> abort{false};
-  const auto stopped = [&] { return abort.load() || (options.stop && options.stop->load()); };
-
-  auto work = [&] {
-    for (;;) {
-      if (stopped()) break;
-      const std::size_t u = next.fetch_add(1);
-      if (u >= units.size()) break;
-      std::vector<const Scenario*> scenarios;
-      for (const std::size_t i : units[u]) {
-        const RunTask& t = tasks[i];
-        scenarios.push_back(&sweeps[static_cast<std::size_t>(t.sweep)]
-                                 .points[static_cast<std::size_t>(t.point)]
-                                 .scenario);
-      }
-      const RunTask& first = tasks[units[u].front()];
-      const std::uint64_t seed = sweeps[static_cast<std::size_t>(first.sweep)].def.seed;
-      const std::vector<RunResult> results =
-          scenarios.size() == 1 ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial,
-                                                                  {}, options.make_controller)}
-                                : run_shared(scenarios, seed, first.trial, options.make_controller);
-      std::vector<RunRow> rows;
-      for (std::size_t k = 0; k < results.size(); ++k) {
-        const RunTask& t = tasks[units[u][k]];
-        const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(t.sweep)];
-        const SweepPoint& point = sweep.points[static_cast<std::size_t>(t.point)];
-        rows.push_back({sweep.def.name, point.index, t.trial, point.config_hash, results[k]});
-      }
-      std::lock_guard lock(mutex);
-      for (auto& row : rows) pending.push_back(std::move(row));
+  // the calling thread hands batches to the sink and reports progress; a failing sink (say, a
+  // full disk) throws, and the pool's destructor stops the workers before the error goes up
+  for (;;) {
+    GroupPool::Batch batch = pool.take(options.progress_interval);
+    if (!batch.rows.empty()) {
+      sink(batch.rows);
+      result.computed += static_cast<std::int64_t>(batch.rows.size());
     }
-    std::lock_guard lock(mutex);
-    --running;
-    wake.notify_all();
-  };
-  std::vector<std::thread> workers;
-  workers.reserve(static_cast<std::size_t>(threads));
-  for (int k = 0; k < threads; ++k) workers.emplace_back(work);
-
-  // the calling thread hands batches to the sink and reports progress
-  const auto interval = std::chrono::duration<double>(options.progress_interval);
-  auto collect = [&] {
-    for (;;) {
-      std::vector<RunRow> batch;
-      bool finished;
-      {
-        std::unique_lock lock(mutex);
-        wake.wait_for(lock, interval, [&] { return running == 0; });
-        batch.swap(pending);
-        finished = running == 0;
-      }
-      if (!batch.empty()) {
-        sink(batch);
-        result.computed += static_cast<std::int64_t>(batch.size());
-      }
-      if (options.on_progress) {
-        options.on_progress({result.computed, static_cast<std::int64_t>(tasks.size()), seconds()});
-      }
-      if (finished) return;
+    if (options.on_progress) {
+      options.on_progress({result.computed, static_cast<std::int64_t>(tasks.size()), seconds()});
     }
-  };
-  try {
-    collect();
-  } catch (...) {
-    // a failing sink (say, a full disk) stops the workers before the error goes up
-    abort = true;
-    for (auto& w : workers) w.join();
-    throw;
+    if (batch.idle) break;
   }
-  for (auto& w : workers) w.join();
   result.total = static_cast<std::int64_t>(tasks.size());
   result.interrupted = result.computed < result.total;
   result.elapsed = seconds();

@@ -1,10 +1,14 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
+#include <deque>
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "plumetrace/scenario.hpp"
@@ -137,5 +141,74 @@ struct RunTask {
 CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                          const std::vector<RunTask>& tasks, const CampaignOptions& options,
                          const RowSink& sink);
+
+/// Something that computes a campaign's tasks and hands their rows to a sink, as run_tasks does
+/// with the threads of this process (the distributed runner does it across processes).
+using TaskRunner = std::function<CampaignResult(const std::vector<ExpandedSweep>&,
+                                                const std::vector<RunTask>&,
+                                                const CampaignOptions&, const RowSink&)>;
+
+/// Tasks that meet one plume: the same plume configuration, master seed and trial.
+using TaskGroup = std::vector<RunTask>;
+
+/// Groups tasks by the plume they meet (plume_key, master seed, trial), groups in the order of
+/// their first task; with `share` false every task is a group of its own.
+std::vector<TaskGroup> plume_groups(const std::vector<ExpandedSweep>& sweeps,
+                                    const std::vector<RunTask>& tasks, bool share);
+
+/// Where there are fewer groups than `wanted`, splits each into parts so that every worker has
+/// work (each part simulates its plume again: the same rows, more work); otherwise unchanged.
+std::vector<TaskGroup> split_groups(std::vector<TaskGroup> groups, std::size_t wanted);
+
+/// Runs a group on one shared plume (run_once for a group of one): its rows in task order.
+std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const TaskGroup& group,
+                              const ControllerFactory& factory);
+
+/// Worker threads that run task groups from a queue as they are added; the caller takes the
+/// finished rows. A class because the threads, the queue and the counts change together.
+class GroupPool {
+ public:
+  /// Rows taken from the pool, and whether it had nothing left to do when they were taken.
+  struct Batch {
+    std::vector<RunRow> rows;  ///< rows finished since the last take
+    bool idle = false;         ///< nothing queued (or stopped) and nothing running
+  };
+
+  /// Starts `threads` workers over `sweeps` (which must outlive the pool); `stop` (may be null)
+  /// is read before each group is started.
+  GroupPool(const std::vector<ExpandedSweep>& sweeps, int threads, ControllerFactory factory,
+            const std::atomic<bool>* stop);
+  /// Drops the groups not started, lets running ones finish and joins the workers.
+  ~GroupPool();
+  GroupPool(const GroupPool&) = delete;
+  GroupPool& operator=(const GroupPool&) = delete;
+
+  /// Queues groups behind those already queued.
+  void add(std::vector<TaskGroup> groups);
+  /// Groups queued and not yet started.
+  std::size_t queued() const;
+  /// Waits until the pool is idle or `timeout` (s) has passed, then takes the finished rows.
+  Batch take(double timeout);
+  /// Starts no further group; running ones finish.
+  void stop();
+
+ private:
+  bool stopped() const;
+  bool idle() const;
+  void work();
+
+  const std::vector<ExpandedSweep>& sweeps_;
+  ControllerFactory factory_;
+  const std::atomic<bool>* external_stop_;
+  mutable std::mutex mutex_;
+  std::condition_variable work_ready_;
+  std::condition_variable changed_;
+  std::deque<TaskGroup> queue_;
+  std::vector<RunRow> rows_;
+  int running_ = 0;
+  bool stop_ = false;
+  bool closed_ = false;
+  std::vector<std::thread> threads_;
+};
 
 }  // namespace plumetrace

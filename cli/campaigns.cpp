@@ -1,10 +1,13 @@
 #include "campaigns.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <thread>
 
 #include "plumetrace/campaign.hpp"
@@ -100,9 +103,11 @@ void write_text(const std::string& path, const std::string& text) {
   if (!out) throw IoError("cannot write '" + path + "'");
 }
 
-// runs the campaign with a progress bar; false when interrupted (after saying so)
+// runs the campaign (or a shard of it) with a progress bar; false when interrupted (after
+// saying so)
 bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep>& sweeps,
-                       Store& store, int runs, const CampaignFlags& flags, CampaignResult& result) {
+                       Store& store, int runs, const CampaignFlags& flags, CampaignResult& result,
+                       const Shard& shard = {}, const TaskRunner& runner = {}) {
   install_stop_handlers();
   ProgressBar bar(label, !flags.quiet && stderr_is_terminal());
   CampaignOptions options;
@@ -110,7 +115,7 @@ bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep
   options.share_plumes = !flags.no_share;
   options.stop = &g_stop;
   options.on_progress = [&](const Progress& p) { bar.update(p); };
-  result = run_campaign(sweeps, store, runs, options);
+  result = run_campaign(sweeps, store, runs, options, shard, runner);
   bar.finish();
   if (!result.interrupted) return true;
   std::fprintf(stderr,
@@ -238,16 +243,25 @@ int run_sensitivity_command(const SensitivityCommand& cmd) {
 }
 
 CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
-  auto* sub = app.add_subcommand("sweep", "run a sweep file's grid of runs into a results store");
+  auto* sub = app.add_subcommand(
+      "sweep",
+      "run a sweep file's grid of runs into a results store (under mpirun: across the ranks)");
   sub->add_option("sweep", cmd.file, "sweep TOML file")->required();
   sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep file's)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--threads", cmd.threads, "worker threads (default: all cores)")
+  sub->add_option("--threads", cmd.threads,
+                  "worker threads (default: all cores; under mpirun, per rank: the cores shared "
+                  "among the ranks on each machine)")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--store", cmd.store, "results store (default: OUT/results.sqlite)");
+  sub->add_option("--store", cmd.store,
+                  "results store (default: OUT/results.sqlite; with --shard "
+                  "OUT/part-I-of-N.sqlite)");
   sub->add_option("--out", cmd.out, "output folder for exports (default: out/NAME)");
   sub->add_option("--set", cmd.sets, "override a key of the base scenario (repeatable)")
       ->allow_extra_args(false);
+  sub->add_option("--shard", cmd.shard,
+                  "compute only part I of N (I/N, e.g. 2/8) for job arrays; merge the parts' "
+                  "stores with plumetrace merge");
   sub->add_flag("--quiet", cmd.quiet, "no progress bar");
   sub->add_flag("--fresh", cmd.fresh, "discard the store's runs if its definition differs");
   sub->add_flag("--no-share-plumes", cmd.no_share,
@@ -255,30 +269,214 @@ CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
   return sub;
 }
 
-int run_sweep_command(const SweepCommand& cmd) {
-  const SweepDef def = read_sweep_file(cmd.file);
-  const std::vector<ExpandedSweep> sweeps{expand_sweep(def, parse_sets(cmd.sets))};
-  const std::string out = cmd.out.empty() ? "out/" + def.name : cmd.out;
-  std::filesystem::create_directories(out);
-  const std::string store_path = cmd.store.empty() ? out + "/results.sqlite" : cmd.store;
+namespace {
 
-  Store store(store_path, campaign_definition(sweeps), version(), cmd.fresh);
+// what a sweep command works on, read alike on every rank
+struct SweepPlan {
+  std::string name;
+  std::vector<ExpandedSweep> sweeps;
+  Shard shard;
+  std::string out;
+  std::string store_path;
+};
+
+SweepPlan plan_sweep(const SweepCommand& cmd) {
+  SweepPlan plan;
+  plan.shard = cmd.shard.empty() ? Shard{} : parse_shard(cmd.shard);
+  const SweepDef def = read_sweep_file(cmd.file);
+  plan.name = def.name;
+  plan.sweeps = {expand_sweep(def, parse_sets(cmd.sets))};
+  plan.out = cmd.out.empty() ? "out/" + def.name : cmd.out;
+  if (!cmd.store.empty()) {
+    plan.store_path = cmd.store;
+  } else if (plan.shard.count > 1) {
+    plan.store_path = plan.out + "/part-" + std::to_string(plan.shard.index) + "-of-" +
+                      std::to_string(plan.shard.count) + ".sqlite";
+  } else {
+    plan.store_path = plan.out + "/results.sqlite";
+  }
+  return plan;
+}
+
+std::unique_ptr<Store> open_sweep_store(const SweepPlan& plan, const SweepCommand& cmd) {
+  // the exports' folder first, so that one that cannot be made stops the sweep before it runs
+  if (plan.shard.count <= 1) std::filesystem::create_directories(plan.out);
+  const auto folder = std::filesystem::path(plan.store_path).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);
+  return std::make_unique<Store>(plan.store_path, campaign_definition(plan.sweeps), version(),
+                                 cmd.fresh);
+}
+
+CampaignFlags sweep_flags(const SweepCommand& cmd) {
   CampaignFlags flags;
   flags.threads = cmd.threads;
   flags.quiet = cmd.quiet;
   flags.no_share = cmd.no_share;
-  CampaignResult result;
-  if (!run_with_progress("sweep " + def.name, sweeps, store, cmd.runs, flags, result)) {
-    return kInterrupted;
+  return flags;
+}
+
+std::string sweep_label(const SweepPlan& plan) {
+  const std::string shard = shard_text(plan.shard);
+  return "sweep " + plan.name + (shard.empty() ? "" : " shard " + shard);
+}
+
+// after the runs: the exports and the summary, or for a shard what its store holds
+int finish_sweep(const SweepPlan& plan, const Store& store, int runs, const CampaignResult& result,
+                 const std::string& where) {
+  const auto counts = [&] {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%lld runs (%lld computed now, %lld from the store) in %.1f s",
+                  static_cast<long long>(result.total), static_cast<long long>(result.computed),
+                  static_cast<long long>(result.skipped), result.elapsed);
+    return std::string(buf) + where;
+  };
+  if (plan.shard.count > 1) {
+    std::printf(
+        "shard %s of sweep %s: %s; store %s; merge the parts' stores with plumetrace "
+        "merge\n",
+        shard_text(plan.shard).c_str(), plan.name.c_str(), counts().c_str(), store.path().c_str());
+    return 0;
   }
   const auto rows = store.rows();
-  write_exports(out, sweeps, rows, cmd.runs);
-  print_summary(sweeps, rows, cmd.runs);
+  std::filesystem::create_directories(plan.out);
+  write_exports(plan.out, plan.sweeps, rows, runs);
+  print_summary(plan.sweeps, rows, runs);
+  std::printf("%s; store %s; exports in %s/\n", counts().c_str(), store.path().c_str(),
+              plan.out.c_str());
+  return 0;
+}
+
+std::string ranks_text(const std::vector<std::int64_t>& runs_per_rank) {
+  std::string text = " on " + std::to_string(runs_per_rank.size()) + " ranks (runs per rank:";
+  for (std::size_t r = 0; r < runs_per_rank.size(); ++r) {
+    text += (r ? ", " : " ") + std::to_string(runs_per_rank[r]);
+  }
+  return text + ")";
+}
+
+// the ranks whose `codes` are not 0, as "1, 3"
+std::string failed_ranks(const std::vector<int>& codes) {
+  std::string text;
+  for (std::size_t r = 0; r < codes.size(); ++r) {
+    if (codes[r] != 0) text += (text.empty() ? "" : ", ") + std::to_string(r);
+  }
+  return text;
+}
+
+// every rank reads the sweep (rank 0 also opens the store) and they agree that all went well
+// and that every rank expanded the same sweep; returns 0, or the exit code after saying why
+int agree_on_sweep(Ranks& ranks, const SweepCommand& cmd, std::optional<SweepPlan>& plan,
+                   std::unique_ptr<Store>& store) {
+  const bool root = ranks.rank() == 0;
+  std::exception_ptr failure;
+  try {
+    plan = plan_sweep(cmd);
+    if (root) store = open_sweep_store(*plan, cmd);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  const int code = failure ? exit_code(failure) : 0;
+  auto codes = ranks.all_gather(code);
+  const int worst = *std::max_element(codes.begin(), codes.end());
+  if (worst != 0) {
+    // rank 0 says it; another rank only what rank 0 did not meet
+    if (failure && (root || codes[0] == 0)) {
+      report_error(failure, root ? "" : "rank " + std::to_string(ranks.rank()) + ": ");
+    } else if (root) {
+      std::fprintf(stderr, "plumetrace: error: rank(s) %s could not start the sweep (see above)\n",
+                   failed_ranks(codes).c_str());
+    }
+    return worst;
+  }
+  // why: each machine reads the files itself; a rank that sees other files would compute
+  // another sweep into this store
+  const std::string definition = campaign_definition(plan->sweeps);
+  const bool same = ranks.broadcast(definition) == definition;
+  codes = ranks.all_gather(same ? 0 : kBadInput);
+  if (std::count(codes.begin(), codes.end(), 0) == static_cast<long>(codes.size())) return 0;
+  if (root) {
+    std::fprintf(stderr,
+                 "plumetrace: error: rank(s) %s read another sweep definition from '%s' (and "
+                 "its scenario) than rank 0: every machine must see the same files\n",
+                 failed_ranks(codes).c_str(), cmd.file.c_str());
+  }
+  return kBadInput;
+}
+
+int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
+  install_stop_handlers();
+  std::optional<SweepPlan> plan;
+  std::unique_ptr<Store> store;
+  if (const int code = agree_on_sweep(ranks, cmd, plan, store)) return code;
+  try {
+    CampaignOptions options;
+    options.threads = cmd.threads;
+    options.share_plumes = !cmd.no_share;
+    options.stop = &g_stop;
+    if (ranks.rank() != 0) return serve_blocks(ranks, plan->sweeps, options) ? 0 : kInterrupted;
+
+    std::vector<std::int64_t> runs_per_rank;
+    CampaignResult result;
+    if (!run_with_progress(sweep_label(*plan), plan->sweeps, *store, cmd.runs, sweep_flags(cmd),
+                           result, plan->shard, coordinator(ranks, &runs_per_rank))) {
+      std::fprintf(stderr,
+                   "plumetrace: the MPI job stopped: a signal, or a rank that ended early (the "
+                   "launcher names it); the store is consistent\n");
+      return kInterrupted;
+    }
+    return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(runs_per_rank));
+  } catch (...) {
+    // the other ranks may wait for this one: end the job once the error is reported
+    ranks.abandon(exit_code(std::current_exception()));
+    throw;
+  }
+}
+
+}  // namespace
+
+int run_sweep_command(const SweepCommand& cmd, Ranks& ranks) {
+  if (ranks.size() > 1) return run_sweep_on_ranks(cmd, ranks);
+  const SweepPlan plan = plan_sweep(cmd);
+  const auto store = open_sweep_store(plan, cmd);
+  CampaignResult result;
+  if (!run_with_progress(sweep_label(plan), plan.sweeps, *store, cmd.runs, sweep_flags(cmd), result,
+                         plan.shard)) {
+    return kInterrupted;
+  }
+  return finish_sweep(plan, *store, cmd.runs, result, "");
+}
+
+CLI::App* add_merge_command(CLI::App& app, MergeCommand& cmd) {
+  auto* sub = app.add_subcommand(
+      "merge", "merge the stores of a sweep's shards (plumetrace sweep --shard) into one store");
+  sub->add_option("parts", cmd.parts, "the parts' results stores")->required();
+  sub->add_option("--store", cmd.store, "the merged results store (created if needed)")->required();
+  return sub;
+}
+
+int run_merge_command(const MergeCommand& cmd) {
+  const MergeReport report = merge_stores(cmd.parts, cmd.store);
   std::printf(
-      "%lld runs (%lld computed now, %lld from the store) in %.1f s; store %s; exports in "
-      "%s/\n",
-      static_cast<long long>(result.total), static_cast<long long>(result.computed),
-      static_cast<long long>(result.skipped), result.elapsed, store_path.c_str(), out.c_str());
+      "merged %zu part(s) into %s: %lld runs added, %lld already there; %lld runs in the "
+      "store\n",
+      cmd.parts.size(), cmd.store.c_str(), static_cast<long long>(report.added),
+      static_cast<long long>(report.already), static_cast<long long>(report.total));
+  for (const auto& gap : report.gaps) {
+    std::fprintf(stderr, "plumetrace: warning: sweep %s: %lld of %lld runs are missing\n",
+                 gap.sweep.c_str(), static_cast<long long>(gap.expected - gap.present),
+                 static_cast<long long>(gap.expected));
+  }
+  if (!report.missing_shards.empty()) {
+    std::string shards;
+    for (const auto& s : report.missing_shards) shards += (shards.empty() ? "" : ", ") + s;
+    std::fprintf(stderr, "plumetrace: warning: no part holds shard(s) %s\n", shards.c_str());
+  }
+  if (!report.gaps.empty()) {
+    std::fprintf(stderr,
+                 "plumetrace: warning: the merged store is incomplete; merge the missing parts "
+                 "into it, or run plumetrace sweep SWEEP.toml --store %s to compute the rest\n",
+                 cmd.store.c_str());
+  }
   return 0;
 }
 
@@ -309,6 +507,30 @@ int run_export_command(const ExportCommand& cmd) {
   std::filesystem::create_directories(cmd.out);
   write_exports(cmd.out, sweeps, rows, cmd.runs);
   return 0;
+}
+
+int exit_code(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const ConfigError&) {
+    return kBadInput;
+  } catch (const StoreError&) {
+    return kBadInput;
+  } catch (const std::filesystem::filesystem_error&) {
+    return kIoFailure;
+  } catch (const IoError&) {
+    return kIoFailure;
+  }
+}
+
+int report_error(const std::exception_ptr& error, const std::string& prefix) {
+  const int code = exit_code(error);
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "plumetrace: error: %s%s\n", prefix.c_str(), e.what());
+  }
+  return code;
 }
 
 }  // namespace plumetrace::cli

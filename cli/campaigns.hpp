@@ -1,8 +1,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <string>
 #include <vector>
+
+#include "plumetrace/distributed.hpp"
 
 namespace plumetrace::cli {
 
@@ -17,12 +20,13 @@ struct SweepCommand {
   bool quiet = false;
   bool fresh = false;
   bool no_share = false;
+  std::string shard;
 };
 
 /// Registers `sweep` on the app.
 CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd);
-/// Runs it; returns the exit code.
-int run_sweep_command(const SweepCommand& cmd);
+/// Runs it on every rank of `ranks` (one process: as always); returns the exit code.
+int run_sweep_command(const SweepCommand& cmd, Ranks& ranks);
 
 /// `plumetrace export STORE ...`
 struct ExportCommand {
@@ -37,6 +41,17 @@ struct ExportCommand {
 CLI::App* add_export_command(CLI::App& app, ExportCommand& cmd);
 /// Runs it; returns the exit code.
 int run_export_command(const ExportCommand& cmd);
+
+/// `plumetrace merge PART... --store OUT`
+struct MergeCommand {
+  std::vector<std::string> parts;
+  std::string store;
+};
+
+/// Registers `merge` on the app.
+CLI::App* add_merge_command(CLI::App& app, MergeCommand& cmd);
+/// Runs it; returns the exit code.
+int run_merge_command(const MergeCommand& cmd);
 
 /// Flags shared by `reproduce` and `sensitivity`.
 struct CampaignFlags {
@@ -79,5 +94,12 @@ int run_sensitivity_command(const SensitivityCommand& cmd);
 inline constexpr int kBadInput = 2;
 inline constexpr int kIoFailure = 3;
 inline constexpr int kInterrupted = 130;
+
+/// The exit code for an error: kBadInput for bad input (ConfigError, StoreError), kIoFailure
+/// for I/O (IoError, filesystem errors); rethrows any other exception.
+int exit_code(const std::exception_ptr& error);
+
+/// Prints "plumetrace: error: " + `prefix` + the error's message on stderr; returns exit_code.
+int report_error(const std::exception_ptr& error, const std::string& prefix = "");
 
 }  // namespace plumetrace::cli

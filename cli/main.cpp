@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "campaigns.hpp"
+#include "plumetrace/distributed.hpp"
 #include "plumetrace/io.hpp"
 #include "plumetrace/probe.hpp"
 #include "plumetrace/scenario.hpp"
@@ -22,7 +24,6 @@ namespace pt = plumetrace;
 namespace {
 
 using plumetrace::cli::kBadInput;
-using plumetrace::cli::kIoFailure;
 
 // options every scenario-reading command shares
 struct ScenarioOptions {
@@ -152,6 +153,8 @@ int main(int argc, char** argv) {
   auto* sweep = pt::cli::add_sweep_command(app, sweep_cmd);
   pt::cli::ExportCommand export_cmd;
   auto* export_sub = pt::cli::add_export_command(app, export_cmd);
+  pt::cli::MergeCommand merge_cmd;
+  auto* merge = pt::cli::add_merge_command(app, merge_cmd);
   pt::cli::ReproduceCommand reproduce_cmd;
   auto* reproduce = pt::cli::add_reproduce_command(app, reproduce_cmd);
   pt::cli::SensitivityCommand sensitivity_cmd;
@@ -171,7 +174,15 @@ int main(int argc, char** argv) {
     return kBadInput;
   }
 
+  // the MPI job this process belongs to, if any: left (MPI_Finalize) when main returns, after any
+  // error has been reported
+  std::optional<pt::Ranks> ranks;
   try {
+    if (!*sweep && pt::launched_ranks() > 1) {
+      throw pt::ConfigError(
+          "only plumetrace sweep runs across the processes of an MPI job; run this command "
+          "without mpirun");
+    }
     if (*run) {
       const pt::Scenario scenario = run_scn.load();
       const std::uint64_t seed = parse_u64("--seed", seed_text);
@@ -215,22 +226,16 @@ int main(int argc, char** argv) {
       std::cout << (config_json ? pt::scenario_to_json(scenario) + "\n"
                                 : pt::scenario_to_toml(scenario));
     }
-    if (*sweep) return pt::cli::run_sweep_command(sweep_cmd);
+    if (*sweep) {
+      ranks.emplace();
+      return pt::cli::run_sweep_command(sweep_cmd, *ranks);
+    }
     if (*export_sub) return pt::cli::run_export_command(export_cmd);
+    if (*merge) return pt::cli::run_merge_command(merge_cmd);
     if (*reproduce) return pt::cli::run_reproduce_command(reproduce_cmd);
     if (*sensitivity) return pt::cli::run_sensitivity_command(sensitivity_cmd);
-  } catch (const pt::ConfigError& e) {
-    std::cerr << "plumetrace: error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const pt::StoreError& e) {
-    std::cerr << "plumetrace: error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "plumetrace: error: " << e.what() << "\n";
-    return kIoFailure;
-  } catch (const pt::IoError& e) {
-    std::cerr << "plumetrace: error: " << e.what() << "\n";
-    return kIoFailure;
+  } catch (...) {
+    return pt::cli::report_error(std::current_exception());
   }
   return 0;
 }

@@ -214,9 +214,7 @@ void GroupPool::stop() {
   changed_.notify_all();
 }
 
-bool GroupPool::stopped() const {
-  return stop_ || (external_stop_ && external_stop_->load());
-}
+bool GroupPool::stopped() const { return stop_ || (external_stop_ && external_stop_->load()); }
 
 bool GroupPool::idle() const { return running_ == 0 && (queue_.empty() || stopped()); }
 

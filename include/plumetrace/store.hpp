@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,36 @@ class StoreError : public std::runtime_error {
 /// Identifies a run within a campaign.
 using RunKey = std::tuple<std::string, int, std::uint64_t>;
 
+/// What a store says about itself, besides its runs.
+struct StoreInfo {
+  std::string definition;                      ///< campaign definition (JSON)
+  std::string version;                         ///< program version that wrote it
+  std::string shard;                           ///< "i/n" when it holds one shard, else ""
+  std::map<std::string, int> runs;             ///< runs per point asked of each sweep
+  std::map<std::string, std::int64_t> points;  ///< points of each sweep
+  std::map<std::string, std::int64_t> stored;  ///< stored runs of each sweep (trial < runs)
+};
+
+/// Reads an existing store's description; throws StoreError naming the file when it is missing
+/// or is not a plumetrace results store.
+StoreInfo read_store_info(const std::string& path);
+
+/// Runs of one sweep that a merged store should hold, and how many it holds.
+struct SweepGap {
+  std::string sweep;          ///< sweep name
+  std::int64_t expected = 0;  ///< points x runs per point
+  std::int64_t present = 0;   ///< stored runs with trial < runs per point
+};
+
+/// What merge_stores did.
+struct MergeReport {
+  std::int64_t added = 0;      ///< runs copied into the store
+  std::int64_t already = 0;    ///< runs the store already held, identical, so not copied
+  std::int64_t total = 0;      ///< runs in the store afterwards
+  std::vector<SweepGap> gaps;  ///< sweeps with runs missing
+  std::vector<std::string> missing_shards;  ///< "i/n" shards no part holds (all parts of n)
+};
+
 /// The embedded SQLite results store: one row per run, plus the campaign definition and the
 /// program version. Every write is one transaction.
 class Store {
@@ -37,6 +68,9 @@ class Store {
 
   /// Records the points of the campaign (axis values and resolved configs), once.
   void put_points(const std::vector<ExpandedSweep>& sweeps);
+  /// Records the runs per point asked of each sweep (the largest asked so far is kept) and the
+  /// shard the store holds ("i/n", "" for the whole campaign); `merge_stores` reads them.
+  void put_plan(const std::vector<std::pair<std::string, int>>& runs, const std::string& shard);
   /// Appends runs in one transaction.
   void insert(const std::vector<RunRow>& rows);
   /// Keys of every stored run.
@@ -45,11 +79,17 @@ class Store {
   std::vector<RunRow> rows() const;
   /// The stored definition (JSON).
   std::string definition() const;
+  /// What the store says about itself (definition, version, shard, runs and points per sweep).
+  StoreInfo info() const;
   /// The file path.
   const std::string& path() const { return path_; }
 
  private:
+  friend MergeReport merge_stores(const std::vector<std::string>& parts, const std::string& out);
   void exec(const std::string& sql) const;
+  void write_plan(const std::vector<std::pair<std::string, int>>& runs, const std::string& shard);
+  MergeReport absorb(const std::vector<std::string>& parts,
+                     const std::vector<std::pair<std::string, int>>& runs);
   void in_transaction(const std::function<void()>& work);
   std::string meta(const std::string& key) const;
 
@@ -59,5 +99,11 @@ class Store {
 
 /// Opens an existing store without checking its definition (for export and reports).
 std::vector<RunRow> read_store_rows(const std::string& path, std::string* definition);
+
+/// Merges part stores (shards of one campaign) into the store at `out`, created if needed, in
+/// one transaction. Every part, and `out` if it exists, must hold the same definition and
+/// version; no run may be in two parts; a run `out` already holds is skipped when identical and
+/// refused otherwise. Throws StoreError naming the files (and a run) and changes nothing then.
+MergeReport merge_stores(const std::vector<std::string>& parts, const std::string& out);
 
 }  // namespace plumetrace

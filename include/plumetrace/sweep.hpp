@@ -2,8 +2,8 @@
 
 #include <atomic>
 #include <condition_variable>
-#include <deque>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <mutex>
 #include <optional>
@@ -144,9 +144,9 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
 
 /// Something that computes a campaign's tasks and hands their rows to a sink, as run_tasks does
 /// with the threads of this process (the distributed runner does it across processes).
-using TaskRunner = std::function<CampaignResult(const std::vector<ExpandedSweep>&,
-                                                const std::vector<RunTask>&,
-                                                const CampaignOptions&, const RowSink&)>;
+using TaskRunner =
+    std::function<CampaignResult(const std::vector<ExpandedSweep>&, const std::vector<RunTask>&,
+                                 const CampaignOptions&, const RowSink&)>;
 
 /// Tasks that meet one plume: the same plume configuration, master seed and trial.
 using TaskGroup = std::vector<RunTask>;

@@ -274,6 +274,8 @@ Ranks::Ranks() {
 
 Ranks::~Ranks() {
   if (!joined_) return;
+  // why: MPI_Abort ends every rank with any launcher, where an exit without MPI_Finalize may
+  // leave the others waiting
   if (abandon_code_ != 0) MPI_Abort(MPI_COMM_WORLD, abandon_code_);
   MPI_Finalize();
 }

@@ -8,6 +8,7 @@
 #include "plumetrace/campaign.hpp"
 #include "plumetrace/io.hpp"
 #include "plumetrace/store.hpp"
+#include "support/rows.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {
@@ -54,26 +55,7 @@ std::vector<ExpandedSweep> quick() {
   return {expand_sweep(read_sweep_file(write_sweep(kQuickSweep)), {})};
 }
 
-// every field of two row lists, bit for bit
-void expect_same_rows(const std::vector<RunRow>& a, const std::vector<RunRow>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].sweep, b[i].sweep);
-    EXPECT_EQ(a[i].point, b[i].point);
-    EXPECT_EQ(a[i].trial, b[i].trial);
-    EXPECT_EQ(a[i].config_hash, b[i].config_hash);
-    const RunResult &x = a[i].result, &y = b[i].result;
-    EXPECT_EQ(x.outcome, y.outcome);
-    EXPECT_EQ(x.time, y.time);
-    EXPECT_EQ(x.d_t, y.d_t);
-    EXPECT_EQ(x.d_u, y.d_u);
-    EXPECT_TRUE(x.overhead == y.overhead || (std::isnan(x.overhead) && std::isnan(y.overhead)));
-    EXPECT_EQ(x.losses, y.losses);
-    EXPECT_EQ(x.odor_fraction, y.odor_fraction);
-    EXPECT_EQ(x.steps, y.steps);
-    EXPECT_EQ(x.seed, y.seed);
-  }
-}
+using testing::expect_same_rows;
 
 std::vector<RunRow> run_fresh(const std::vector<ExpandedSweep>& sweeps, int threads,
                               bool share = true) {

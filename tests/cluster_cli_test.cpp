@@ -1,0 +1,267 @@
+// `plumetrace sweep --shard`, `plumetrace merge` and, in builds with MPI, `mpirun ... plumetrace
+// sweep`, as processes: every way of splitting a sweep gives the single process's exports, byte
+// for byte.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "plumetrace/store.hpp"
+#include "support/temp_path.hpp"
+
+namespace plumetrace {
+namespace {
+
+const std::string kCli = PLUMETRACE_CLI;
+
+// two plumes x two algorithms x 12 quick trials: 48 runs in 24 plume groups, under a second
+const char* const kSweep = R"(
+name = "cluster"
+runs = 12
+seed = %SEED%
+
+[set]
+robot.start_x = 3.0
+sim.warmup = 4.0
+supervisor.timeout = 60.0
+
+[[axis]]
+key = "plume.sigma_p"
+values = [0.1, 0.12]
+
+[[axis]]
+key = "controller.algorithm"
+values = ["casting", "surge-cast"]
+)";
+
+std::string write_sweep(const std::string& seed = "31") {
+  std::string text = kSweep;
+  text.replace(text.find("%SEED%"), 6, seed);
+  const std::string path = testing::temp_path("sweep", ".toml");
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// what a command did
+struct Outcome {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+// runs a shell command line, capturing its output
+Outcome run(const std::string& command) {
+  const std::string out = testing::temp_path("stdout", ".txt");
+  const std::string err = testing::temp_path("stderr", ".txt");
+  const int status = std::system((command + " >" + out + " 2>" + err).c_str());
+  Outcome o;
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  o.out = read_file(out);
+  o.err = read_file(err);
+  return o;
+}
+
+Outcome plumetrace(const std::string& args) { return run(kCli + " " + args); }
+
+// the exports of a store of the sweep, as text
+std::string exports(const std::string& sweep, const std::string& store) {
+  const std::string out = testing::temp_path("exports", "");
+  EXPECT_EQ(plumetrace("export " + sweep + " --store " + store + " --out " + out).code, 0);
+  return read_file(out + "/runs.csv") + read_file(out + "/summary.csv");
+}
+
+// the single-process sweep everything else must equal
+std::string baseline(const std::string& sweep) {
+  const std::string store = testing::temp_path("baseline", ".sqlite");
+  const Outcome o = plumetrace("sweep " + sweep + " --threads 2 --quiet --store " + store +
+                               " --out " + testing::temp_path("baseline_out", ""));
+  EXPECT_EQ(o.code, 0) << o.err;
+  const std::string text = exports(sweep, store);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1 + 48 + 1 + 4);
+  return text;
+}
+
+// computes shard i/n into a store of its own; returns the store
+std::string shard(const std::string& sweep, int i, int n, const std::string& extra = "") {
+  const std::string store = testing::temp_path("part", ".sqlite");
+  const Outcome o = plumetrace("sweep " + sweep + " --shard " + std::to_string(i) + "/" +
+                               std::to_string(n) + " --store " + store + " " + extra);
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("shard " + std::to_string(i) + "/" + std::to_string(n)), std::string::npos)
+      << o.out;
+  return store;
+}
+
+TEST(ShardsCli, ThreeShardsMergedEqualASingleProcessSweep) {
+  const std::string sweep = write_sweep();
+  const std::string all = testing::temp_path("all", ".sqlite");
+  const Outcome merged = plumetrace("merge " + shard(sweep, 1, 3) + " " + shard(sweep, 2, 3) + " " +
+                                    shard(sweep, 3, 3) + " --store " + all);
+  EXPECT_EQ(merged.code, 0) << merged.err;
+  EXPECT_EQ(merged.err, "");
+  EXPECT_NE(merged.out.find("48 runs added"), std::string::npos) << merged.out;
+  EXPECT_EQ(exports(sweep, all), baseline(sweep));
+}
+
+TEST(ShardsCli, AShardRunTwiceAddsNoRows) {
+  const std::string sweep = write_sweep();
+  const std::string store = shard(sweep, 2, 3);
+  const Outcome again = plumetrace("sweep " + sweep + " --shard 2/3 --store " + store);
+  EXPECT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.out.find("16 runs (0 computed now, 16 from the store)"), std::string::npos)
+      << again.out;
+  EXPECT_EQ(read_store_rows(store, nullptr).size(), 16u);
+}
+
+TEST(ShardsCli, MergeWarnsOfMissingRunsAndASweepOverTheStoreComputesThem) {
+  const std::string sweep = write_sweep();
+  const std::string all = testing::temp_path("all", ".sqlite");
+  const Outcome merged =
+      plumetrace("merge " + shard(sweep, 1, 3) + " " + shard(sweep, 3, 3) + " --store " + all);
+  EXPECT_EQ(merged.code, 0) << merged.err;
+  EXPECT_NE(merged.err.find("sweep cluster: 16 of 48 runs are missing"), std::string::npos)
+      << merged.err;
+  EXPECT_NE(merged.err.find("shard(s) 2/3"), std::string::npos) << merged.err;
+  const Outcome rest = plumetrace("sweep " + sweep + " --quiet --store " + all + " --out " +
+                                  testing::temp_path("rest", ""));
+  EXPECT_NE(rest.out.find("48 runs (16 computed now, 32 from the store)"), std::string::npos)
+      << rest.out << rest.err;
+  EXPECT_EQ(exports(sweep, all), baseline(sweep));
+}
+
+TEST(ShardsCli, MergeRefusesPartsOfAnotherSweepNamingTheFile) {
+  const std::string sweep = write_sweep();
+  const std::string other_seed = shard(write_sweep("32"), 2, 2);
+  const std::string other_set = shard(sweep, 2, 2, "--set sim.dt=0.04");
+  const std::string part = shard(sweep, 1, 2);
+  const std::string all = testing::temp_path("all", ".sqlite");
+  for (const std::string& other : {other_seed, other_set}) {
+    const Outcome o = plumetrace("merge " + part + " " + other + " --store " + all);
+    EXPECT_EQ(o.code, 2);
+    EXPECT_NE(o.err.find("'" + other + "' holds runs of another sweep definition"),
+              std::string::npos)
+        << o.err;
+  }
+  const Outcome overlap =
+      plumetrace("merge " + part + " " + shard(sweep, 1, 3) + " --store " + all);
+  EXPECT_EQ(overlap.code, 2);
+  EXPECT_NE(overlap.err.find("both hold"), std::string::npos) << overlap.err;
+  EXPECT_FALSE(std::filesystem::exists(all));
+}
+
+TEST(ShardsCli, ABadShardIsRefusedNamingTheOption) {
+  const std::string sweep = write_sweep();
+  for (const char* bad : {"0/2", "3/2", "2", "one/two"}) {
+    const Outcome o = plumetrace("sweep " + sweep + " --shard " + bad + " --store " +
+                                 testing::temp_path("bad", ".sqlite"));
+    EXPECT_EQ(o.code, 2) << bad;
+    EXPECT_NE(o.err.find("--shard"), std::string::npos) << o.err;
+    EXPECT_EQ(o.out, "");
+  }
+}
+
+#ifdef PLUMETRACE_MPIEXEC
+// The environment of mpirun in these tests, and only there. why: Open MPI refuses to run as root
+// (CI and containers do) unless told; shared memory only, without the single-copy mechanism
+// (it needs ptrace rights that containers withhold) and without probing for UCX devices
+const char* const kMpiEnv =
+    "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+    "OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_MCA_pml=ob1";
+
+// runs plumetrace on `ranks` ranks, with `env` added; why: no binding to cores, so that tests
+// running side by side on a small machine do not pile onto the same cores
+Outcome mpirun(int ranks, const std::string& args, const std::string& env = "") {
+  return run(std::string("env ") + kMpiEnv + " " + env + " " + PLUMETRACE_MPIEXEC + " -n " +
+             std::to_string(ranks) + " --oversubscribe --bind-to none " + kCli + " " + args);
+}
+
+// the runs each rank computed, from the summary line's "(runs per rank: a, b, c)"
+std::vector<long> runs_per_rank(const std::string& out) {
+  std::vector<long> runs;
+  const auto at = out.find("runs per rank:");
+  if (at == std::string::npos) return runs;
+  std::istringstream in(out.substr(at + 14, out.find(')', at) - at - 14));
+  for (std::string item; std::getline(in, item, ',');) runs.push_back(std::stol(item));
+  return runs;
+}
+
+TEST(MpiCli, TwoRanksEqualASingleProcessSweep) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("two", ".sqlite");
+  const Outcome o = mpirun(2, "sweep " + sweep + " --quiet --store " + store + " --out " +
+                                  testing::temp_path("two_out", ""));
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto runs = runs_per_rank(o.out);
+  ASSERT_EQ(runs.size(), 2u) << o.out;
+  EXPECT_EQ(runs[0] + runs[1], 48);
+  EXPECT_EQ(exports(sweep, store), baseline(sweep));
+}
+
+TEST(MpiCli, ThreeOversubscribedRanksWithoutSharedPlumesEqualASingleProcessSweep) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("three", ".sqlite");
+  const Outcome o = mpirun(3, "sweep " + sweep + " --no-share-plumes --quiet --store " + store +
+                                  " --out " + testing::temp_path("three_out", ""));
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto runs = runs_per_rank(o.out);
+  ASSERT_EQ(runs.size(), 3u) << o.out;
+  for (const long r : runs) EXPECT_GT(r, 0) << o.out;  // every rank took blocks
+  EXPECT_EQ(runs[0] + runs[1] + runs[2], 48);
+  EXPECT_EQ(exports(sweep, store), baseline(sweep));
+}
+
+TEST(MpiCli, AShardOnTwoRanksMergesWithAShardOfOneProcess) {
+  const std::string sweep = write_sweep();
+  const std::string first = testing::temp_path("first", ".sqlite");
+  const Outcome o = mpirun(2, "sweep " + sweep + " --shard 1/2 --store " + first);
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("shard 1/2 of sweep cluster: 24 runs"), std::string::npos) << o.out;
+  const std::string all = testing::temp_path("all", ".sqlite");
+  ASSERT_EQ(plumetrace("merge " + first + " " + shard(sweep, 2, 2) + " --store " + all).code, 0);
+  EXPECT_EQ(exports(sweep, all), baseline(sweep));
+}
+
+TEST(MpiCli, AKilledRankEndsTheJobWithAConsistentStoreThatARerunCompletes) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("killed", ".sqlite");
+  const std::string args = "sweep " + sweep + " --no-share-plumes --threads 1 --quiet --store " +
+                           store + " --out " + testing::temp_path("killed_out", "");
+  // rank 1 dies (SIGKILL) after its first rows; the launcher then ends the job: rank 0 gets
+  // SIGTERM, then SIGKILL 3 s later rather than Open MPI's default 1 s, on a loaded machine
+  const Outcome killed =
+      mpirun(3, args, "PLUMETRACE_TEST_KILL_RANK=1:1 OMPI_MCA_odls_base_sigkill_timeout=3");
+  EXPECT_NE(killed.code, 0);
+  EXPECT_NE(killed.err.find("plumetrace: interrupted: "), std::string::npos) << killed.err;
+  EXPECT_NE(killed.err.find("the MPI job stopped"), std::string::npos) << killed.err;
+  const auto kept = read_store_rows(store, nullptr);
+  EXPECT_LT(kept.size(), 48u);  // the dead rank's runs are missing, nothing else is wrong
+
+  const Outcome rerun = mpirun(2, args);
+  ASSERT_EQ(rerun.code, 0) << rerun.err;
+  EXPECT_NE(rerun.out.find("from the store"), std::string::npos);
+  EXPECT_EQ(exports(sweep, store), baseline(sweep));
+}
+
+TEST(MpiCli, OnlySweepRunsUnderMpirun) {
+  const Outcome o = mpirun(2, "run --json");
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.err.find("only plumetrace sweep runs across the processes of an MPI job"),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(o.out, "");
+}
+#endif
+
+}  // namespace
+}  // namespace plumetrace

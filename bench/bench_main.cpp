@@ -1,8 +1,13 @@
 // Google Benchmark cases: one plume step, one concentration query, one whole run per algorithm.
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
+
+#include "plumetrace/distributed.hpp"
+#include "plumetrace/io.hpp"
 #include "plumetrace/plume.hpp"
 #include "plumetrace/scenario.hpp"
+#include "plumetrace/store.hpp"
 #include "plumetrace/world.hpp"
 
 namespace plumetrace {
@@ -73,6 +78,41 @@ void BM_WholeRun(benchmark::State& state) {
       static_cast<double>(steps) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_WholeRun)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+// rows as a sweep makes them: one point, consecutive trials from `first`
+std::vector<RunRow> sample_rows(std::size_t count, std::uint64_t first) {
+  std::vector<RunRow> rows(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    rows[i] = {"G", 3, first + i, "0123456789abcdef", {}};
+    rows[i].result = {Outcome::kSuccess, 81.3, 9.7, 8.1, 1.2, 2, 0.4, 2540, 3, 20080101, first + i};
+  }
+  return rows;
+}
+
+// the store's write rate, which bounds a distributed sweep's rate (rank 0 writes every row): one
+// transaction per batch of range(0) rows
+void BM_StoreInsert(benchmark::State& state) {
+  const auto path = std::filesystem::temp_directory_path() / "plumetrace_bench_store.sqlite";
+  std::filesystem::remove(path);
+  Store store(path.string(), "{}", version(), true);
+  const auto batch = static_cast<std::size_t>(state.range(0));
+  std::uint64_t trial = 0;
+  for (auto _ : state) {
+    store.insert(sample_rows(batch, trial));
+    trial += batch;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(trial));
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(path.string() + suffix);
+}
+BENCHMARK(BM_StoreInsert)->Arg(10)->Arg(1000);
+
+// a batch of rows through the message format between ranks, both ways
+void BM_RowMessage(benchmark::State& state) {
+  const auto rows = sample_rows(static_cast<std::size_t>(state.range(0)), 0);
+  for (auto _ : state) benchmark::DoNotOptimize(decode_rows(encode_rows(rows)));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_RowMessage)->Arg(10);
 
 }  // namespace
 }  // namespace plumetrace

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/command.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {
@@ -19,34 +20,11 @@ using nlohmann::json;
 const std::string kCli = PLUMETRACE_CLI;
 const std::string kScenarios = std::string(PLUMETRACE_SOURCE_DIR) + "/scenarios/";
 
-struct Output {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Output = testing::CommandOutput;
+using testing::read_file;
 
 // runs the command with `args`, capturing stdout, stderr and the exit code
-Output cli(const std::string& args) {
-  const std::string err_path = testing::temp_path("stderr", ".txt");
-  const std::string command = kCli + " " + args + " 2>" + err_path;
-  Output o;
-  std::FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return o;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) o.out.append(buf, n);
-  const int status = pclose(pipe);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  o.err = read_file(err_path);
-  return o;
-}
+Output cli(const std::string& args) { return testing::run_command(kCli + " " + args); }
 
 TEST(Cli, RunJsonHasEveryDocumentedKey) {
   const Output o = cli("run --algorithm surge-spiral --seed 3 --trial 2 --json");

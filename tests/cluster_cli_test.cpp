@@ -2,7 +2,6 @@
 // sweep`, as processes: every way of splitting a sweep gives the single process's exports, byte
 // for byte.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -11,6 +10,7 @@
 #include <sstream>
 
 #include "plumetrace/store.hpp"
+#include "support/command.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {
@@ -18,61 +18,20 @@ namespace {
 
 const std::string kCli = PLUMETRACE_CLI;
 
-// two plumes x two algorithms x 12 quick trials: 48 runs in 24 plume groups, under a second
-const char* const kSweep = R"(
-name = "cluster"
-runs = 12
-seed = %SEED%
+const std::string kSweep = PLUMETRACE_SOURCE_DIR "/tests/support/two_plumes.toml";
 
-[set]
-robot.start_x = 3.0
-sim.warmup = 4.0
-supervisor.timeout = 60.0
-
-[[axis]]
-key = "plume.sigma_p"
-values = [0.1, 0.12]
-
-[[axis]]
-key = "controller.algorithm"
-values = ["casting", "surge-cast"]
-)";
-
+// the shared sweep, or a copy of it with another master seed
 std::string write_sweep(const std::string& seed = "31") {
-  std::string text = kSweep;
-  text.replace(text.find("%SEED%"), 6, seed);
-  const std::string path = testing::temp_path("sweep", ".toml");
-  std::ofstream(path) << text;
-  return path;
+  std::string text = testing::read_file(kSweep);
+  text.replace(text.find("seed = 31"), 9, "seed = " + seed);
+  return testing::write_temp("sweep", ".toml", text);
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Outcome = testing::CommandOutput;
+using testing::read_file;
+using testing::run_command;
 
-// what a command did
-struct Outcome {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-// runs a shell command line, capturing its output
-Outcome run(const std::string& command) {
-  const std::string out = testing::temp_path("stdout", ".txt");
-  const std::string err = testing::temp_path("stderr", ".txt");
-  const int status = std::system((command + " >" + out + " 2>" + err).c_str());
-  Outcome o;
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  o.out = read_file(out);
-  o.err = read_file(err);
-  return o;
-}
-
-Outcome plumetrace(const std::string& args) { return run(kCli + " " + args); }
+Outcome plumetrace(const std::string& args) { return run_command(kCli + " " + args); }
 
 // the exports of a store of the sweep, as text
 std::string exports(const std::string& sweep, const std::string& store) {
@@ -130,7 +89,7 @@ TEST(ShardsCli, MergeWarnsOfMissingRunsAndASweepOverTheStoreComputesThem) {
   const Outcome merged =
       plumetrace("merge " + shard(sweep, 1, 3) + " " + shard(sweep, 3, 3) + " --store " + all);
   EXPECT_EQ(merged.code, 0) << merged.err;
-  EXPECT_NE(merged.err.find("sweep cluster: 16 of 48 runs are missing"), std::string::npos)
+  EXPECT_NE(merged.err.find("sweep two: 16 of 48 runs are missing"), std::string::npos)
       << merged.err;
   EXPECT_NE(merged.err.find("shard(s) 2/3"), std::string::npos) << merged.err;
   const Outcome rest = plumetrace("sweep " + sweep + " --quiet --store " + all + " --out " +
@@ -182,8 +141,9 @@ const char* const kMpiEnv =
 // runs plumetrace on `ranks` ranks, with `env` added; why: no binding to cores, so that tests
 // running side by side on a small machine do not pile onto the same cores
 Outcome mpirun(int ranks, const std::string& args, const std::string& env = "") {
-  return run(std::string("env ") + kMpiEnv + " " + env + " " + PLUMETRACE_MPIEXEC + " -n " +
-             std::to_string(ranks) + " --oversubscribe --bind-to none " + kCli + " " + args);
+  return run_command(std::string("env ") + kMpiEnv + " " + env + " " + PLUMETRACE_MPIEXEC + " -n " +
+                     std::to_string(ranks) + " --oversubscribe --bind-to none " + kCli + " " +
+                     args);
 }
 
 // the runs each rank computed, from the summary line's "(runs per rank: a, b, c)"
@@ -226,7 +186,7 @@ TEST(MpiCli, AShardOnTwoRanksMergesWithAShardOfOneProcess) {
   const std::string first = testing::temp_path("first", ".sqlite");
   const Outcome o = mpirun(2, "sweep " + sweep + " --shard 1/2 --store " + first);
   ASSERT_EQ(o.code, 0) << o.err;
-  EXPECT_NE(o.out.find("shard 1/2 of sweep cluster: 24 runs"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("shard 1/2 of sweep two: 24 runs"), std::string::npos) << o.out;
   const std::string all = testing::temp_path("all", ".sqlite");
   ASSERT_EQ(plumetrace("merge " + first + " " + shard(sweep, 2, 2) + " --store " + all).code, 0);
   EXPECT_EQ(exports(sweep, all), baseline(sweep));

@@ -17,30 +17,10 @@ namespace {
 
 using testing::expect_same_rows;
 
-// two plumes (sigma_p) x two algorithms, quick runs: 4 points x 6 trials
-const char* const kTwoPlumes = R"(
-name = "two"
-runs = 6
-seed = 31
-
-[set]
-robot.start_x = 3.0
-sim.warmup = 4.0
-supervisor.timeout = 60.0
-
-[[axis]]
-key = "plume.sigma_p"
-values = [0.1, 0.12]
-
-[[axis]]
-key = "controller.algorithm"
-values = ["casting", "surge-cast"]
-)";
-
+// two plumes (sigma_p) x two algorithms, quick runs: 4 points x 12 trials
 std::vector<ExpandedSweep> two_plumes(const std::vector<Setting>& overrides = {}) {
-  const std::string path = testing::temp_path("sweep", ".toml");
-  std::ofstream(path) << kTwoPlumes;
-  return {expand_sweep(read_sweep_file(path), overrides)};
+  return {expand_sweep(read_sweep_file(PLUMETRACE_SOURCE_DIR "/tests/support/two_plumes.toml"),
+                       overrides)};
 }
 
 std::string error_of(const std::function<void()>& f) {
@@ -82,11 +62,11 @@ TEST(Shard, ParsesIOverNAndRefusesTheRestNamingTheOption) {
 TEST(Shard, ThePartsAreDisjointCoverTheCampaignAndAreBalanced) {
   const auto sweeps = two_plumes();
   const auto all = missing_runs(sweeps, {}, 0);
-  ASSERT_EQ(all.size(), 24u);
+  ASSERT_EQ(all.size(), 48u);
   std::set<std::tuple<int, int, std::uint64_t>> seen;
   for (int i = 1; i <= 3; ++i) {
     const auto part = missing_runs(sweeps, {}, 0, Shard{i, 3});
-    EXPECT_EQ(part.size(), 8u) << i;  // 2 plumes x 6 trials = 12 units of 2 runs, 4 per part
+    EXPECT_EQ(part.size(), 16u) << i;  // 2 plumes x 12 trials: 24 units of 2 runs, 8 per part
     for (const auto& t : part) {
       EXPECT_TRUE(seen.insert({t.sweep, t.point, t.trial}).second) << "in two parts";
     }
@@ -123,8 +103,8 @@ TEST(Shard, RunningAShardAgainComputesAndAddsNothing) {
   Store store(path, campaign_definition(sweeps), version(), false);
   const CampaignResult again = run_campaign(sweeps, store, 0, {}, Shard{1, 3});
   EXPECT_EQ(again.computed, 0);
-  EXPECT_EQ(again.skipped, 8);
-  EXPECT_EQ(store.rows().size(), 8u);
+  EXPECT_EQ(again.skipped, 16);
+  EXPECT_EQ(store.rows().size(), 16u);
   EXPECT_EQ(store.info().shard, "1/3");
 }
 
@@ -135,9 +115,9 @@ TEST(Merge, ThreeShardsMergeToTheRowsOfTheWholeCampaign) {
   for (int i = 1; i <= 3; ++i) parts.push_back(run_into(sweeps, Shard{i, 3}, "part"));
   const std::string out = testing::temp_path("merged", ".sqlite");
   const MergeReport report = merge_stores(parts, out);
-  EXPECT_EQ(report.added, 24);
+  EXPECT_EQ(report.added, 48);
   EXPECT_EQ(report.already, 0);
-  EXPECT_EQ(report.total, 24);
+  EXPECT_EQ(report.total, 48);
   EXPECT_TRUE(report.gaps.empty());
   EXPECT_TRUE(report.missing_shards.empty());
   expect_same_rows(rows_of(out), whole);
@@ -155,11 +135,11 @@ TEST(Merge, MissingPartsAreReportedAndASweepOverTheStoreCompletesIt) {
       merge_stores({run_into(sweeps, Shard{1, 3}, "p1"), run_into(sweeps, Shard{3, 3}, "p3")}, out);
   ASSERT_EQ(report.gaps.size(), 1u);
   EXPECT_EQ(report.gaps[0].sweep, "two");
-  EXPECT_EQ(report.gaps[0].expected, 24);
-  EXPECT_EQ(report.gaps[0].present, 16);
+  EXPECT_EQ(report.gaps[0].expected, 48);
+  EXPECT_EQ(report.gaps[0].present, 32);
   EXPECT_EQ(report.missing_shards, std::vector<std::string>{"2/3"});
   Store store(out, campaign_definition(sweeps), version(), false);
-  EXPECT_EQ(run_campaign(sweeps, store, 0, {}).computed, 8);
+  EXPECT_EQ(run_campaign(sweeps, store, 0, {}).computed, 16);
   expect_same_rows(store.rows(), rows_of(run_into(sweeps, {}, "whole")));
 }
 
@@ -167,11 +147,11 @@ TEST(Merge, MergingAgainSkipsIdenticalRunsAndRefusesDifferentOnes) {
   const auto sweeps = two_plumes();
   const std::string part = run_into(sweeps, Shard{1, 2}, "part");
   const std::string out = testing::temp_path("out", ".sqlite");
-  EXPECT_EQ(merge_stores({part}, out).added, 12);
+  EXPECT_EQ(merge_stores({part}, out).added, 24);
   const MergeReport again = merge_stores({part}, out);
   EXPECT_EQ(again.added, 0);
-  EXPECT_EQ(again.already, 12);
-  EXPECT_EQ(rows_of(out).size(), 12u);
+  EXPECT_EQ(again.already, 24);
+  EXPECT_EQ(rows_of(out).size(), 24u);
 
   // a part whose run differs from the one the store holds (same key, other result)
   const std::string forged = testing::temp_path("forged", ".sqlite");
@@ -185,7 +165,7 @@ TEST(Merge, MergingAgainSkipsIdenticalRunsAndRefusesDifferentOnes) {
   const std::string message = error_of([&] { merge_stores({forged}, out); });
   EXPECT_NE(message.find("other results"), std::string::npos) << message;
   EXPECT_NE(message.find(forged), std::string::npos) << message;
-  EXPECT_EQ(rows_of(out).size(), 12u);  // unchanged
+  EXPECT_EQ(rows_of(out).size(), 24u);  // unchanged
 }
 
 TEST(Merge, OverlappingPartsAreRefusedNamingBothFilesAndARun) {
@@ -204,11 +184,11 @@ TEST(Merge, OverlappingPartsAreRefusedNamingBothFilesAndARun) {
 TEST(Merge, PartsOfAnotherDefinitionOrVersionAreRefusedNamingTheFile) {
   const auto sweeps = two_plumes();
   const std::string part = run_into(two_plumes(), Shard{1, 2}, "part");
-  const std::string other_seed =
+  const std::string other_dt =
       run_into(two_plumes({parse_override("sim.dt=0.04")}), Shard{2, 2}, "other");
   const std::string out = testing::temp_path("out", ".sqlite");
-  std::string message = error_of([&] { merge_stores({part, other_seed}, out); });
-  EXPECT_NE(message.find(other_seed), std::string::npos) << message;
+  std::string message = error_of([&] { merge_stores({part, other_dt}, out); });
+  EXPECT_NE(message.find(other_dt), std::string::npos) << message;
   EXPECT_NE(message.find("another sweep definition"), std::string::npos) << message;
 
   const std::string old = testing::temp_path("old", ".sqlite");

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "plumetrace/store.hpp"
+#include "support/command.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {
@@ -33,18 +34,9 @@ key = "surge_spiral.d_gap"
 values = [0.111, 0.222, 0.333]
 )";
 
-std::string write_sweep() {
-  const std::string path = testing::temp_path("sweep", ".toml");
-  std::ofstream(path) << kSweep;
-  return path;
-}
+std::string write_sweep() { return testing::write_temp("sweep", ".toml", kSweep); }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::read_file;
 
 // starts the command in the background; returns its pid
 pid_t spawn(const std::vector<std::string>& args) {

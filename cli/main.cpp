@@ -210,8 +210,7 @@ int main(int argc, char** argv) {
       if (!trace_path.empty() || !run_view_path.empty()) {
         const bool interval_given = run->get_option("--snapshot-interval")->count() > 0;
         // why: the viewer animates the plume, so it wants snapshots more often than a trace
-        const double interval =
-            run_view_path.empty() || interval_given ? snapshot_interval : 0.25;
+        const double interval = run_view_path.empty() || interval_given ? snapshot_interval : 0.25;
         observer = pt::TraceRecorder(trace, interval, scenario.sim.dt);
       }
       const pt::RunResult result = pt::run_once(scenario, seed, trial, observer);

@@ -323,8 +323,7 @@ RecordedRun read_trace(const std::string& path) {
     for (std::size_t i = 0; i < n; ++i) {
       TraceStep& s = run.trace.steps[i];
       s.time = st["time"][i].get<double>();
-      s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(),
-                st["heading"][i].get<double>()};
+      s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(), st["heading"][i].get<double>()};
       s.odometer = st["odometer"][i].get<double>();
       s.state = st["state"][i].get<std::string>();
       s.odor = st["odor"][i].get<bool>();
@@ -343,7 +342,8 @@ RecordedRun read_trace(const std::string& path) {
       f.z = snap.at("z").get<std::vector<double>>();
       f.w = snap.at("w").get<std::vector<double>>();
       if (f.y.size() != f.x.size() || f.z.size() != f.x.size() || f.w.size() != f.x.size()) {
-        throw ConfigError("trace '" + path + "': a filament snapshot has columns of unequal length");
+        throw ConfigError("trace '" + path +
+                          "': a filament snapshot has columns of unequal length");
       }
       run.trace.snapshots.push_back(std::move(f));
     }

@@ -88,7 +88,8 @@ std::vector<std::size_t> path_steps(const std::vector<TraceStep>& steps, double 
 
 std::vector<std::size_t> frame_steps(const std::vector<TraceStep>& steps, std::size_t max_frames) {
   const std::size_t n = steps.size();
-  const std::size_t stride = std::max<std::size_t>(1, (n + max_frames - 1) / std::max<std::size_t>(1, max_frames));
+  const std::size_t stride =
+      std::max<std::size_t>(1, (n + max_frames - 1) / std::max<std::size_t>(1, max_frames));
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < n; ++i) {
     const bool changed = i > 0 && steps[i].state != steps[i - 1].state;
@@ -117,9 +118,9 @@ std::vector<std::size_t> detection_steps(const std::vector<TraceStep>& steps, do
   for (std::size_t i = 0; i < steps.size(); ++i) {
     if (!steps[i].odor) continue;
     const bool onset = i == 0 || !steps[i - 1].odor;
-    const bool far = kept.empty() || std::hypot(steps[i].pose.x - steps[kept.back()].pose.x,
-                                                steps[i].pose.y - steps[kept.back()].pose.y) >=
-                                         spacing;
+    const bool far =
+        kept.empty() || std::hypot(steps[i].pose.x - steps[kept.back()].pose.x,
+                                   steps[i].pose.y - steps[kept.back()].pose.y) >= spacing;
     if (onset || far) kept.push_back(i);
   }
   return kept;
@@ -211,8 +212,8 @@ std::size_t snapshot_at(const Trace& trace, double t) {
 
 // log10 of a filament's own peak concentration, the quantity its shade shows
 double log_peak(const RecordedRun& run, double w) {
-  return std::log10(std::max(kernel_value(run.scenario.plume, w, 0.0),
-                             std::numeric_limits<double>::min()));
+  return std::log10(
+      std::max(kernel_value(run.scenario.plume, w, 0.0), std::numeric_limits<double>::min()));
 }
 
 struct ShadeRange {
@@ -225,7 +226,8 @@ struct ShadeRange {
 ShadeRange shade_range(const RecordedRun& run, const std::vector<std::size_t>& snapshots) {
   double wmin = INFINITY, wmax = -INFINITY;
   for (const std::size_t i : snapshots) {
-    for (const double w : run.trace.snapshots[i].w) wmin = std::min(wmin, w), wmax = std::max(wmax, w);
+    for (const double w : run.trace.snapshots[i].w)
+      wmin = std::min(wmin, w), wmax = std::max(wmax, w);
   }
   if (!(wmin <= wmax)) return {};
   const double a = log_peak(run, wmin), b = log_peak(run, wmax);
@@ -299,10 +301,9 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
              {"states", json::array()}};
   for (std::size_t i = 0; i < names.size(); ++i) style["states"].push_back(view::state_color(i));
 
-  json frames{{"step", json::array()}, {"time", json::array()},  {"x", json::array()},
-              {"y", json::array()},    {"heading", json::array()}, {"state", json::array()},
-              {"d_t", json::array()},  {"concentration", json::array()},
-              {"odor", json::array()}};
+  json frames{{"step", json::array()}, {"time", json::array()},          {"x", json::array()},
+              {"y", json::array()},    {"heading", json::array()},       {"state", json::array()},
+              {"d_t", json::array()},  {"concentration", json::array()}, {"odor", json::array()}};
   for (const std::size_t i : view::frame_steps(steps, options.max_frames)) {
     const TraceStep& s = steps[i];
     frames["step"].push_back(i);
@@ -316,7 +317,9 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
     frames["odor"].push_back(s.odor ? 1 : 0);
   }
 
-  json path{{"time", json::array()}, {"x", json::array()}, {"y", json::array()},
+  json path{{"time", json::array()},
+            {"x", json::array()},
+            {"y", json::array()},
             {"state", json::array()}};
   for (const std::size_t i : view::path_steps(steps, options.path_tolerance)) {
     path["time"].push_back(rounded(steps[i].time, 1e-4));
@@ -332,8 +335,8 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
     detections["y"].push_back(rounded(steps[i].pose.y, 1e-5));
   }
 
-  json wind{{"time", json::array()}, {"x", json::array()}, {"y", json::array()},
-            {"u", json::array()},    {"v", json::array()}, {"true_u", json::array()},
+  json wind{{"time", json::array()},  {"x", json::array()}, {"y", json::array()},
+            {"u", json::array()},     {"v", json::array()}, {"true_u", json::array()},
             {"true_v", json::array()}};
   for (const auto& w : wind_samples(run)) {
     wind["time"].push_back(rounded(w.time, 1e-4));
@@ -346,28 +349,29 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
   }
 
   const auto kept_snaps = view::thin_evenly(run.trace.snapshots.size(), options.max_snapshots);
-  return {{"plumetrace_view", 1},
-          {"version", run.version},
-          {"result", detail::result_json(run.result, run.info)},
-          {"arena",
-           {{"x_min", sc.arena.x_min},
-            {"x_max", sc.arena.x_max},
-            {"y_min", sc.arena.y_min},
-            {"y_max", sc.arena.y_max}}},
-          {"source", {{"x", sc.source.center.x}, {"y", sc.source.center.y},
-                      {"radius", sc.source.radius}}},
-          {"success_radius", sc.supervisor.success_radius},
-          {"robot", {{"radius", sc.robot.radius}, {"start_x", sc.robot.start.x},
-                     {"start_y", sc.robot.start.y}}},
-          {"threshold", sc.odor.threshold},
-          {"steps", steps.size()},
-          {"states", names},
-          {"style", style},
-          {"frames", frames},
-          {"path", path},
-          {"detections", detections},
-          {"wind", wind},
-          {"snapshots", snapshots_json(run, kept_snaps, shade_range(run, kept_snaps))}};
+  return {
+      {"plumetrace_view", 1},
+      {"version", run.version},
+      {"result", detail::result_json(run.result, run.info)},
+      {"arena",
+       {{"x_min", sc.arena.x_min},
+        {"x_max", sc.arena.x_max},
+        {"y_min", sc.arena.y_min},
+        {"y_max", sc.arena.y_max}}},
+      {"source",
+       {{"x", sc.source.center.x}, {"y", sc.source.center.y}, {"radius", sc.source.radius}}},
+      {"success_radius", sc.supervisor.success_radius},
+      {"robot",
+       {{"radius", sc.robot.radius}, {"start_x", sc.robot.start.x}, {"start_y", sc.robot.start.y}}},
+      {"threshold", sc.odor.threshold},
+      {"steps", steps.size()},
+      {"states", names},
+      {"style", style},
+      {"frames", frames},
+      {"path", path},
+      {"detections", detections},
+      {"wind", wind},
+      {"snapshots", snapshots_json(run, kept_snaps, shade_range(run, kept_snaps))}};
 }
 
 // the data as the text of a <script type="application/json"> element
@@ -387,11 +391,20 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (const char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -479,9 +492,9 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
     const auto& s = run.trace.snapshots[i];
     svg << "<g id=\"plume\" fill=\"" << kPlumeColor << "\">\n";
     for (std::size_t k = 0; k < s.x.size(); ++k) {
-      svg << "<circle cx=\"" << px(s.x[k]) << "\" cy=\"" << py(s.y[k]) << "\" r=\""
-          << len(s.w[k]) << "\" fill-opacity=\""
-          << num(0.05 + 0.2 * range.shade(log_peak(run, s.w[k])), 3) << "\"/>\n";
+      svg << "<circle cx=\"" << px(s.x[k]) << "\" cy=\"" << py(s.y[k]) << "\" r=\"" << len(s.w[k])
+          << "\" fill-opacity=\"" << num(0.05 + 0.2 * range.shade(log_peak(run, s.w[k])), 3)
+          << "\"/>\n";
     }
     svg << "</g>\n";
   }
@@ -507,9 +520,8 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   svg << "<g id=\"path\" fill=\"none\" stroke-width=\"2\" stroke-linejoin=\"round\">\n";
   for (std::size_t j = 1; j < vertices.size();) {
     const std::string& state = steps[vertices[j]].state;
-    svg << "<polyline stroke=\"" << view::state_color(state_index(names, state))
-        << "\" points=\"" << px(steps[vertices[j - 1]].pose.x) << ","
-        << py(steps[vertices[j - 1]].pose.y);
+    svg << "<polyline stroke=\"" << view::state_color(state_index(names, state)) << "\" points=\""
+        << px(steps[vertices[j - 1]].pose.x) << "," << py(steps[vertices[j - 1]].pose.y);
     for (; j < vertices.size() && steps[vertices[j]].state == state; ++j) {
       svg << " " << px(steps[vertices[j]].pose.x) << "," << py(steps[vertices[j]].pose.y);
     }
@@ -569,9 +581,10 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   entry(std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kRobotColor +
             "\" stroke=\"#222222\"/>",
         "robot");
-  entry("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"#444444\" "
-        "stroke-dasharray=\"4 3\"/>",
-        "success radius");
+  entry(
+      "<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"#444444\" "
+      "stroke-dasharray=\"4 3\"/>",
+      "success radius");
   svg << "</g>\n</svg>\n";
   return svg.str();
 }

@@ -79,9 +79,8 @@ TEST(Viewer, SimplifiedPathStaysWithinTheTolerance) {
   for (std::size_t j = 1; j < kept.size(); ++j) {
     ASSERT_LT(kept[j - 1], kept[j]);
     for (std::size_t i = kept[j - 1] + 1; i < kept[j]; ++i) {
-      ASSERT_LE(segment_distance(x[i], y[i], x[kept[j - 1]], y[kept[j - 1]], x[kept[j]],
-                                 y[kept[j]]),
-                tol)
+      ASSERT_LE(
+          segment_distance(x[i], y[i], x[kept[j - 1]], y[kept[j - 1]], x[kept[j]], y[kept[j]]), tol)
           << "point " << i;
     }
   }
@@ -246,7 +245,8 @@ std::vector<double> dequantize(const json& q) {
   const auto raw = unbase64(q["data"].get<std::string>());
   std::vector<double> out;
   for (std::size_t i = 0; i + 1 < raw.size(); i += 2) {
-    out.push_back(q["origin"].get<double>() + (raw[i] | (raw[i + 1] << 8)) * q["unit"].get<double>());
+    out.push_back(q["origin"].get<double>() +
+                  (raw[i] | (raw[i + 1] << 8)) * q["unit"].get<double>());
   }
   return out;
 }
@@ -318,9 +318,12 @@ TEST(Viewer, FigureDrawsEveryLayer) {
   std::size_t samples = 0;
   for (const auto& s : run.trace.steps) samples += s.wind_samples > 0;
   EXPECT_EQ(count("marker-end=\"url(#arrow)\"/>") - 1, samples);  // one more in the legend
-  const auto plume = svg.substr(svg.find("<g id=\"plume\""), svg.find("</g>", svg.find("<g id=\"plume\"")) - svg.find("<g id=\"plume\""));
+  const auto plume =
+      svg.substr(svg.find("<g id=\"plume\""),
+                 svg.find("</g>", svg.find("<g id=\"plume\"")) - svg.find("<g id=\"plume\""));
   std::size_t circles = 0;
-  for (auto at = plume.find("<circle"); at != std::string::npos; at = plume.find("<circle", at + 1)) ++circles;
+  for (auto at = plume.find("<circle"); at != std::string::npos; at = plume.find("<circle", at + 1))
+    ++circles;
   EXPECT_EQ(circles, run.trace.snapshots.back().x.size());
   EXPECT_NE(svg.find("<g id=\"robot\">"), std::string::npos);
   EXPECT_NE(svg.find(std::string(outcome_name(run.result.outcome)) + " at "), std::string::npos);

@@ -59,11 +59,11 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
 
 /// A run read back from a `.json` trace: what it ran, how it ended and what it recorded.
 struct RecordedRun {
-  Scenario scenario;  ///< the fully resolved scenario of the run
-  RunResult result;   ///< its metrics
-  RunInfo info;       ///< algorithm, seed and trial
+  Scenario scenario;    ///< the fully resolved scenario of the run
+  RunResult result;     ///< its metrics
+  RunInfo info;         ///< algorithm, seed and trial
   std::string version;  ///< the plumetrace version that wrote the trace
-  Trace trace;        ///< steps and filament snapshots
+  Trace trace;          ///< steps and filament snapshots
 };
 
 /// Reads a trace written by write_trace as `.json`; throws IoError naming the file when it cannot

@@ -4,7 +4,7 @@
 import { after, before, test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdtempSync, readFileSync, rmSync } from "node:fs";
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { pathToFileURL } from "node:url";
@@ -234,6 +234,21 @@ test("the static SVG figure draws the same layers", async () => {
   assert.ok(count(img, all, (p) => near(p, hex(style.robot), 40)) > 20, "robot");
   assert.ok(count(img, all, bluish) > 5000, "plume");
   for (const c of style.states) assert.ok(count(img, all, (p) => near(p, hex(c), 30)) > 50, `trajectory in ${c}`);
+  await page.close();
+  assert.deepEqual(errors, []);
+});
+
+test("names from the run are shown as text, not markup", async () => {
+  // a controller of the user's may name its states anything
+  const trace = JSON.parse(readFileSync(join(dir, "run.json"), "utf8"));
+  trace.result.algorithm = "<b id='injected'>mine</b>";
+  trace.steps.state = trace.steps.state.map((s) => (s === "upwind" ? "<i id='state'>up</i>" : s));
+  writeFileSync(join(dir, "odd.json"), JSON.stringify(trace));
+  plumetrace("view", "odd.json", "-o", "odd.html");
+  const page = await open("odd.html");
+  assert.equal(await page.locator("#injected, #state").count(), 0);
+  assert.equal(await page.locator("#p-state").textContent(), "<i id='state'>up</i>");
+  assert.match(await page.locator("#outcome").textContent(), /<b id='injected'>mine<\/b>, seed 1/);
   await page.close();
   assert.deepEqual(errors, []);
 });

@@ -17,6 +17,7 @@
 #include "plumetrace/scenario.hpp"
 #include "plumetrace/store.hpp"
 #include "plumetrace/trace.hpp"
+#include "plumetrace/viewer.hpp"
 #include "plumetrace/world.hpp"
 
 namespace pt = plumetrace;
@@ -121,6 +122,29 @@ int main(int argc, char** argv) {
                   "seconds between filament snapshots in the trace (0: none)")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--json", json_out, "print one JSON object");
+  std::string run_view_path;
+  run->add_option("--view", run_view_path,
+                  "write the run's viewer (.html, animated) or figure (.svg); filaments every "
+                  "0.25 s unless --snapshot-interval says otherwise");
+
+  // view
+  auto* view = app.add_subcommand("view", "draw a run from its .json trace: viewer or figure");
+  std::string view_trace, view_out;
+  pt::ViewerOptions view_opts;
+  view->add_option("trace", view_trace, "trace written by: plumetrace run --trace FILE.json")
+      ->required();
+  view->add_option("-o,--output", view_out,
+                   "FILE.html (animated viewer) or FILE.svg (static figure); default: the "
+                   "trace's name with .html");
+  view->add_option("--max-frames", view_opts.max_frames,
+                   "most robot frames kept for the animation (default 12000)")
+      ->check(CLI::PositiveNumber);
+  view->add_option("--max-snapshots", view_opts.max_snapshots,
+                   "most filament snapshots kept (default 600)")
+      ->check(CLI::PositiveNumber);
+  view->add_option("--at", view_opts.figure_time,
+                   "time of the filaments drawn in an .svg figure (s; default: the end)")
+      ->check(CLI::NonNegativeNumber);
 
   // probe
   auto* probe = app.add_subcommand("probe", "run the plume alone and sample it at points");
@@ -189,12 +213,16 @@ int main(int argc, char** argv) {
       const std::uint64_t trial = parse_u64("--trial", trial_text);
       // fail on an unwritable trace before spending the run
       if (!trace_path.empty()) pt::check_trace_path(trace_path);
+      if (!run_view_path.empty()) pt::check_view_path(run_view_path, "--view");
       const pt::RunInfo info{std::string(pt::algorithm_name(scenario.controller.algorithm)), seed,
                              trial};
       pt::Trace trace;
       pt::StepObserver observer;
-      if (!trace_path.empty()) {
-        observer = pt::TraceRecorder(trace, snapshot_interval, scenario.sim.dt);
+      if (!trace_path.empty() || !run_view_path.empty()) {
+        const bool interval_given = run->get_option("--snapshot-interval")->count() > 0;
+        // why: the viewer animates the plume, so it wants snapshots more often than a trace
+        const double interval = run_view_path.empty() || interval_given ? snapshot_interval : 0.25;
+        observer = pt::TraceRecorder(trace, interval, scenario.sim.dt);
       }
       const pt::RunResult result = pt::run_once(scenario, seed, trial, observer);
       // print the result before writing the trace, so a failing write loses nothing computed
@@ -206,6 +234,12 @@ int main(int argc, char** argv) {
       if (!trace_path.empty()) {
         pt::write_trace(trace_path, trace, scenario, result, info);
         if (!json_out) std::cout << "  trace     " << trace_path << "\n";
+      }
+      if (!run_view_path.empty()) {
+        const pt::RecordedRun recorded{scenario, result, info, std::string(pt::version()),
+                                       std::move(trace)};
+        pt::write_view(run_view_path, recorded, pt::ViewerOptions{});
+        if (!json_out) std::cout << "  view      " << run_view_path << "\n";
       }
     } else if (*probe) {
       const pt::Scenario scenario = probe_scn.load();
@@ -221,6 +255,15 @@ int main(int argc, char** argv) {
                       r.detect_fraction, r.mean_concentration);
         }
       }
+    } else if (*view) {
+      if (view_out.empty()) {
+        const std::filesystem::path p(view_trace);
+        view_out = (p.parent_path() / p.stem()).string() + ".html";
+      }
+      const pt::RecordedRun recorded = pt::read_trace(view_trace);
+      pt::check_view_path(view_out, "--output");
+      pt::write_view(view_out, recorded, view_opts);
+      std::cout << view_out << "\n";
     } else if (*config) {
       const pt::Scenario scenario = config_scn.load();
       std::cout << (config_json ? pt::scenario_to_json(scenario) + "\n"

@@ -20,6 +20,7 @@
 #include "plumetrace/stats.hpp"
 #include "plumetrace/sweep.hpp"
 #include "plumetrace/trace.hpp"
+#include "plumetrace/viewer.hpp"
 #include "plumetrace/world.hpp"
 
 namespace py = pybind11;
@@ -168,21 +169,25 @@ class ExternalController : public pt::Controller {
 // one run, optionally traced, optionally with a Python controller
 py::dict run(const std::optional<std::string>& path, const Overrides& overrides, std::uint64_t seed,
              std::uint64_t trial, bool trace, double snapshot_interval,
-             py::object controller_factory) {
+             py::object controller_factory, const std::optional<std::string>& view) {
   const pt::Scenario scenario = scenario_of(path, overrides);
   const pt::ControllerFactory factory = python_factory(std::move(controller_factory));
+  if (view) pt::check_view_path(*view, "view");
   pt::Trace recorded;
   pt::TraceRecorder recorder(recorded, snapshot_interval, scenario.sim.dt);
   pt::RunResult result;
   {
     py::gil_scoped_release release;
     result = pt::run_once(scenario, seed, trial,
-                          trace ? pt::StepObserver(std::ref(recorder)) : nullptr, factory);
+                          trace || view ? pt::StepObserver(std::ref(recorder)) : nullptr, factory);
   }
   const std::string algorithm =
       factory ? "python" : std::string(pt::algorithm_name(scenario.controller.algorithm));
-  py::dict out = py::module_::import("json").attr("loads")(
-      pt::result_to_json(result, {algorithm, seed, trial}));
+  const pt::RunInfo info{algorithm, seed, trial};
+  py::dict out = py::module_::import("json").attr("loads")(pt::result_to_json(result, info));
+  if (view) {
+    pt::write_view(*view, {scenario, result, info, std::string(pt::version()), recorded}, {});
+  }
   if (trace) {
     out["trajectory"] = trace_columns(recorded);
     out["snapshots"] = snapshot_list(recorded);
@@ -288,7 +293,8 @@ PYBIND11_MODULE(_core, m) {
     return names;
   });
   m.def("run", &run, py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"),
-        py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"));
+        py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"),
+        py::arg("view") = std::nullopt);
   m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"), py::arg("threads"),
         py::arg("share_plumes"), py::arg("controller_factory"));
 

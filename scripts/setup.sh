@@ -9,22 +9,34 @@ packages=(
   libgtest-dev libbenchmark-dev
   python3 python3-dev pybind11-dev python3-matplotlib python3-numpy python3-pytest
   libopenmpi-dev openmpi-bin
+  chromium
 )
+# node and npm run the viewer's browser test; a Node.js from elsewhere (which bundles npm) will do
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if ((${#missing[@]} == 0)); then
-  exit 0
+if ((${#missing[@]} > 0)); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || { echo "setup: need root or sudo to install packages" >&2; exit 1; }
+    sudo="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "setup: installing ${missing[*]}"
-sudo=""
-if [[ $(id -u) -ne 0 ]]; then
-  command -v sudo >/dev/null || { echo "setup: need root or sudo to install packages" >&2; exit 1; }
-  sudo="sudo"
+# playwright-core (npm, pinned by tests/browser/package-lock.json) drives chromium in the viewer's
+# test; installed again only when the lock file changed
+browser_tests="$(dirname "$0")/../tests/browser"
+if [[ ! -f "$browser_tests/node_modules/.package-lock.json" ||
+      "$browser_tests/package-lock.json" -nt "$browser_tests/node_modules/.package-lock.json" ]]; then
+  echo "setup: npm ci in tests/browser"
+  npm ci --prefix "$browser_tests" --no-audit --no-fund --loglevel=error
 fi
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -234,6 +235,126 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
     }
   }
   check_written(snaps, snap_path);
+}
+
+namespace {
+
+// a config JSON object (nested by table) as settings of one layer, in file order
+std::vector<Setting> config_settings(const json& config, const std::string& origin) {
+  std::vector<Setting> settings;
+  for (const auto& [table, keys] : config.items()) {
+    for (const auto& [name, v] : keys.items()) {
+      const std::string key = table + "." + name;
+      if (v.is_boolean()) {
+        settings.push_back({key, v.get<bool>(), false, origin, Layer::kFile});
+      } else if (v.is_number_integer()) {
+        settings.push_back({key, v.get<std::int64_t>(), false, origin, Layer::kFile});
+      } else if (v.is_number()) {
+        settings.push_back({key, v.get<double>(), false, origin, Layer::kFile});
+      } else {
+        // why: strings are parsed for the key's type, as "inf" is written for infinite numbers
+        settings.push_back({key, v.get<std::string>(), true, origin, Layer::kFile});
+      }
+    }
+  }
+  return settings;
+}
+
+Outcome outcome_from_name(const std::string& name) {
+  for (Outcome o : {Outcome::kRunning, Outcome::kSuccess, Outcome::kWall, Outcome::kTimeout,
+                    Outcome::kGaveUp}) {
+    if (outcome_name(o) == name) return o;
+  }
+  throw ConfigError("unknown outcome '" + name + "'");
+}
+
+double number_or_nan(const json& v) {
+  return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+}
+
+}  // namespace
+
+RecordedRun read_trace(const std::string& path) {
+  if (ends_with(path, ".csv")) {
+    throw ConfigError("trace '" + path +
+                      "': a CSV trace carries no configuration; write the trace as .json "
+                      "(plumetrace run --trace run.json)");
+  }
+  std::ifstream in(path);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || !in) {
+    throw IoError("cannot read trace '" + path + "'");
+  }
+  RecordedRun run;
+  try {
+    const json doc = json::parse(in);
+    if (!doc.is_object() || !doc.contains("plumetrace_trace")) {
+      throw ConfigError("trace '" + path + "': not a plumetrace trace (no 'plumetrace_trace' key)");
+    }
+    run.scenario = build_scenario(config_settings(doc.at("config"), path));
+
+    const json& r = doc.at("result");
+    run.info = {r.at("algorithm").get<std::string>(), r.at("seed").get<std::uint64_t>(),
+                r.at("trial").get<std::uint64_t>()};
+    run.version = r.at("version").get<std::string>();
+    run.result.outcome = outcome_from_name(r.at("outcome").get<std::string>());
+    run.result.time = r.at("time_s").get<double>();
+    run.result.d_t = r.at("d_t").get<double>();
+    run.result.d_u = r.at("d_u").get<double>();
+    run.result.overhead = number_or_nan(r.at("overhead"));
+    run.result.losses = r.at("losses").get<int>();
+    run.result.odor_fraction = r.at("odor_fraction").get<double>();
+    run.result.steps = r.at("steps").get<std::int64_t>();
+    run.result.wind_samples = r.at("wind_samples").get<std::int64_t>();
+    run.result.seed = run.info.seed;
+    run.result.trial = run.info.trial;
+
+    const json& st = doc.at("steps");
+    const std::size_t n = st.at("time").size();
+    for (const char* column : {"x", "y", "heading", "odometer", "state", "odor", "concentration",
+                               "wind_samples", "wind_x_body", "wind_y_body", "wind_z_body"}) {
+      if (st.at(column).size() != n) {
+        throw ConfigError("trace '" + path + "': column '" + column + "' has " +
+                          std::to_string(st.at(column).size()) + " rows, 'time' has " +
+                          std::to_string(n));
+      }
+    }
+    run.trace.steps.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      TraceStep& s = run.trace.steps[i];
+      s.time = st["time"][i].get<double>();
+      s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(), st["heading"][i].get<double>()};
+      s.odometer = st["odometer"][i].get<double>();
+      s.state = st["state"][i].get<std::string>();
+      s.odor = st["odor"][i].get<bool>();
+      s.concentration = st["concentration"][i].get<double>();
+      s.wind_samples = st["wind_samples"][i].get<int>();
+      if (s.wind_samples > 0) {
+        s.wind_body = {st["wind_x_body"][i].get<double>(), st["wind_y_body"][i].get<double>(),
+                       st["wind_z_body"][i].get<double>()};
+      }
+    }
+    for (const auto& snap : doc.at("snapshots")) {
+      FilamentSnapshot f;
+      f.time = snap.at("time").get<double>();
+      f.x = snap.at("x").get<std::vector<double>>();
+      f.y = snap.at("y").get<std::vector<double>>();
+      f.z = snap.at("z").get<std::vector<double>>();
+      f.w = snap.at("w").get<std::vector<double>>();
+      if (f.y.size() != f.x.size() || f.z.size() != f.x.size() || f.w.size() != f.x.size()) {
+        throw ConfigError("trace '" + path +
+                          "': a filament snapshot has columns of unequal length");
+      }
+      run.trace.snapshots.push_back(std::move(f));
+    }
+  } catch (const json::exception& e) {
+    throw ConfigError("trace '" + path + "': not a valid plumetrace trace (" + e.what() + ")");
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    if (what.rfind("trace '", 0) == 0) throw;
+    throw ConfigError("trace '" + path + "': " + what);
+  }
+  return run;
 }
 
 namespace {

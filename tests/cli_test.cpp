@@ -170,6 +170,55 @@ TEST(Cli, JsonTraceMatchesTheRunResult) {
   EXPECT_FALSE(steps["wind_x_body"][1].is_null());
 }
 
+TEST(Cli, RunViewWritesThePageAndViewRedrawsItFromTheTrace) {
+  const std::string trace = testing::temp_path("run", ".json");
+  const std::string page = testing::temp_path("run", ".html");
+  const Output o = cli("run --set supervisor.timeout=10 --trace " + trace + " --view " + page);
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("view      " + page), std::string::npos) << o.out;
+  const std::string html = read_file(page);
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  // --view alone records filaments every 0.25 s (8 steps); so does the trace written beside it
+  EXPECT_EQ(json::parse(read_file(trace))["snapshots"].size(), 1u + 313u / 8u);
+
+  // view: the same page from the trace, and the static figure
+  const std::string again = testing::temp_path("again", ".html");
+  ASSERT_EQ(cli("view " + trace + " -o " + again).code, 0);
+  EXPECT_EQ(read_file(again), html);
+  const std::string figure = testing::temp_path("figure", ".svg");
+  const Output f = cli("view " + trace + " -o " + figure + " --at 5");
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_EQ(read_file(figure).rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u);
+  // without -o: the trace's name with .html
+  ASSERT_EQ(cli("view " + trace).code, 0);
+  EXPECT_EQ(read_file(trace.substr(0, trace.size() - 5) + ".html"), html);
+}
+
+TEST(Cli, ViewErrorsNameTheFileAndExitNonZero) {
+  const Output missing = cli("view /nonexistent-dir/run.json");
+  EXPECT_EQ(missing.code, 3);
+  EXPECT_NE(missing.err.find("/nonexistent-dir/run.json"), std::string::npos) << missing.err;
+
+  const Output csv = cli("view run.csv");
+  EXPECT_EQ(csv.code, 2);
+  EXPECT_NE(csv.err.find("write the trace as .json"), std::string::npos) << csv.err;
+
+  const std::string trace = testing::temp_path("run", ".json");
+  ASSERT_EQ(cli("run --set supervisor.timeout=1 --trace " + trace).code, 0);
+  const Output png = cli("view " + trace + " -o run.png");
+  EXPECT_EQ(png.code, 2);
+  EXPECT_NE(png.err.find("--output 'run.png'"), std::string::npos) << png.err;
+
+  // a bad --view fails before the run: nothing printed
+  const Output bad = cli("run --view run.txt");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(bad.out, "");
+  EXPECT_NE(bad.err.find("--view 'run.txt'"), std::string::npos) << bad.err;
+  const Output unwritable = cli("run --view /nonexistent-dir/run.html");
+  EXPECT_EQ(unwritable.code, 3);
+  EXPECT_EQ(unwritable.out, "");
+}
+
 TEST(Cli, ProbeReportsEveryPoint) {
   const Output o = cli("probe --points \"8,0,0;8,1.5,0\" --duration 5 --json");
   ASSERT_EQ(o.code, 0) << o.err;

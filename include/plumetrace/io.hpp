@@ -57,6 +57,20 @@ void check_trace_path(const std::string& path);
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
                  const RunResult& result, const RunInfo& info);
 
+/// A run read back from a `.json` trace: what it ran, how it ended and what it recorded.
+struct RecordedRun {
+  Scenario scenario;    ///< the fully resolved scenario of the run
+  RunResult result;     ///< its metrics
+  RunInfo info;         ///< algorithm, seed and trial
+  std::string version;  ///< the plumetrace version that wrote the trace
+  Trace trace;          ///< steps and filament snapshots
+};
+
+/// Reads a trace written by write_trace as `.json`; throws IoError naming the file when it cannot
+/// be read, ConfigError when it is not a plumetrace JSON trace (a `.csv` trace carries no
+/// configuration and is refused with that reason).
+RecordedRun read_trace(const std::string& path);
+
 /// Reads a sweep file; throws ConfigError naming the file and the problem (unknown key, empty
 /// axis, value of the wrong type, ...). The scenario path is resolved from the file's folder.
 SweepDef read_sweep_file(const std::string& path);

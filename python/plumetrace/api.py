@@ -101,8 +101,8 @@ class _Section:
         return f"<{self._prefix}: {self._scenario[self._prefix]!r}>"
 
 
-def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_interval=0.0,
-        controller=None, overrides=None, **kwargs):
+def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_interval=None,
+        controller=None, overrides=None, view=None, **kwargs):
     """One run. Returns a dict with the keys of `plumetrace run --json` and, with `trace`,
     ``trajectory`` (NumPy arrays per step: time, x, y, heading, odometer, odor,
     concentration, wind_samples, wind_x, wind_y, and state names) and ``snapshots``
@@ -112,11 +112,15 @@ def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_int
     and keyword arguments (``wind_sensor__sigma_a=0.3`` for ``wind_sensor.sigma_a``) change
     keys for this run. `controller`: a factory ``f(scenario_dict, rng)`` returning an object
     with ``step(observation, wind) -> Command`` (see plumetrace.controllers) instead of the
-    scenario's algorithm.
+    scenario's algorithm. `view`: a ``.html`` path for the animated run viewer or a ``.svg`` path
+    for the static figure (as ``plumetrace run --view``); filaments are then recorded every
+    0.25 s unless `snapshot_interval` says otherwise (default without a view: none).
     """
     path, settings = _settings(scenario, algorithm, overrides, kwargs)
+    if snapshot_interval is None:
+        snapshot_interval = 0.25 if view is not None else 0.0
     return _core.run(path, settings, int(seed), int(trial), bool(trace), float(snapshot_interval),
-                     controller)
+                     controller, None if view is None else str(view))
 
 
 def sweep(path, runs=0, threads=0, share_plumes=True, controller=None, overrides=None, **kwargs):

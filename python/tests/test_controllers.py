@@ -1,11 +1,14 @@
 """Controllers written in Python run in the same loop and sweep as the built-in ones."""
 
 import importlib.util
+import json
+import os
 import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from conftest import plumetrace_with_core  # noqa: E402
 
@@ -78,3 +81,34 @@ def test_the_examples_run(tmp_path):
     assert out.count("episode") == 3
     assert (tmp_path / "trajectory.png").stat().st_size > 10000
     assert (tmp_path / "sweep.png").stat().st_size > 10000
+
+
+def _page_data(path):
+    html = Path(path).read_text()
+    start = html.index('<script id="plumetrace-data" type="application/json">')
+    start = html.index(">", start) + 1
+    return json.loads(html[start:html.index("</script>", start)])
+
+
+def test_runs_from_python_open_in_the_viewer(tmp_path):
+    # a built-in run: the same page as `plumetrace run --view`, byte for byte
+    mine = tmp_path / "casting.html"
+    pt.run(algorithm="casting", seed=3, trial=1, view=mine, robot__start_x=6.0)
+    cli = tmp_path / "cli.html"
+    subprocess.run([os.environ["PLUMETRACE_CLI"], "run", "--algorithm", "casting", "--seed", "3",
+                    "--trial", "1", "--set", "robot.start_x=6", "--view", str(cli)],
+                   check=True, capture_output=True)
+    assert mine.read_bytes() == cli.read_bytes()
+
+    # a Python controller's run: its states and its name reach the page and the figure
+    r = pt.run(algorithm="surge-cast", seed=13, trial=0, controller=example.SurgeCast,
+               view=tmp_path / "mine.html")
+    data = _page_data(tmp_path / "mine.html")
+    assert data["result"]["algorithm"] == "python"
+    assert data["steps"] == r["steps"] + 1
+    assert set(data["states"]) == set(r["trajectory"]["state"])
+    pt.run(algorithm="surge-cast", controller=example.SurgeCast, view=tmp_path / "mine.svg")
+    assert (tmp_path / "mine.svg").read_text().startswith("<svg")
+
+    with pytest.raises(ValueError, match="view 'x.png'"):
+        pt.run(view="x.png")

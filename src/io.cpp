@@ -319,6 +319,7 @@ RecordedRun read_trace(const std::string& path) {
                           std::to_string(n));
       }
     }
+    if (n == 0) throw ConfigError("trace '" + path + "': no steps");
     run.trace.steps.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       TraceStep& s = run.trace.steps[i];

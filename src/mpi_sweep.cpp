@@ -224,10 +224,16 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
     outbox.progress();
 
     const bool done = present == 0 && own.idle && (queue.empty() || stopping);
-    if (done || since(last_commit) >= options.progress_interval) commit();
+    // why: once stopping, rows go to the store as they come, since the launcher may kill this
+    // rank at any moment
+    if (done || (stopping && !pending.empty()) || since(last_commit) >= options.progress_interval) {
+      commit();
+    }
     if (done) break;
-    // a worker that died never says goodbye
-    if (stopping && since(stop_time) > kStopWait) {
+    // a worker that died never says goodbye: past the wait, only this rank's own running groups
+    // are waited for (they cannot be cut short, and their rows are kept as a local sweep keeps
+    // them)
+    if (stopping && own.idle && since(stop_time) > kStopWait) {
       commit();
       break;
     }

@@ -376,13 +376,15 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
 
 // the data as the text of a <script type="application/json"> element
 std::string script_safe(const json& data) {
-  std::string text = data.dump();
-  // why: "</" would end the script element early; "<\/" is the same JSON string
+  // why: "</script" would end the element and "<!--" changes how the parser looks for its end;
+  // '<' can only stand in JSON strings, where "\u003c" is the same character
   std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    out += text[i];
-    if (text[i] == '<' && i + 1 < text.size() && text[i + 1] == '/') out += '\\';
+  for (const char c : data.dump()) {
+    if (c == '<') {
+      out += "\\u003c";
+    } else {
+      out += c;
+    }
   }
   return out;
 }

@@ -211,6 +211,12 @@ TEST(Trace, ReadingABadTraceNamesTheFile) {
   std::ofstream(other) << "{\"points\": []}";
   EXPECT_NE(message(other).find("not a plumetrace trace"), std::string::npos);
 
+  RecordedRun run = recorded_run(0.0);
+  run.trace.steps.clear();
+  const std::string empty = testing::temp_path("empty", ".json");
+  write_trace(empty, run.trace, run.scenario, run.result, run.info);
+  EXPECT_NE(message(empty).find("no steps"), std::string::npos) << message(empty);
+
   const std::string bad_key = testing::temp_path("badkey", ".json");
   std::ofstream(bad_key) << "{\"plumetrace_trace\": 1, \"config\": {\"wind\": {\"vq\": 1}}}";
   EXPECT_NE(message(bad_key).find("wind.vq"), std::string::npos);
@@ -295,9 +301,15 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
 TEST(Viewer, DataCannotEndTheScriptElement) {
   RecordedRun run = recorded_run(0.0);
   run.info.algorithm = "</script><b>";
+  for (auto& s : run.trace.steps) s.state = "<!--<script>";
   const std::string html = viewer_html(run, {});
   const json d = page_data(html);
   EXPECT_EQ(d["result"]["algorithm"], "</script><b>");
+  EXPECT_EQ(d["states"], (json{"<!--<script>"}));
+  // no '<' at all in the data, so nothing in it can end or disturb the script element
+  const std::string open = "<script id=\"plumetrace-data\" type=\"application/json\">";
+  const auto a = html.find(open) + open.size();
+  EXPECT_EQ(html.substr(a, html.find("</script>", a) - a).find('<'), std::string::npos);
 }
 
 TEST(Viewer, FigureDrawsEveryLayer) {

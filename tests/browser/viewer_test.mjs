@@ -242,12 +242,12 @@ test("names from the run are shown as text, not markup", async () => {
   // a controller of the user's may name its states anything
   const trace = JSON.parse(readFileSync(join(dir, "run.json"), "utf8"));
   trace.result.algorithm = "<b id='injected'>mine</b>";
-  trace.steps.state = trace.steps.state.map((s) => (s === "upwind" ? "<i id='state'>up</i>" : s));
+  trace.steps.state = trace.steps.state.map((s) => (s === "upwind" ? "<!--<script><i id='state'>up</i>" : s));
   writeFileSync(join(dir, "odd.json"), JSON.stringify(trace));
   plumetrace("view", "odd.json", "-o", "odd.html");
   const page = await open("odd.html");
   assert.equal(await page.locator("#injected, #state").count(), 0);
-  assert.equal(await page.locator("#p-state").textContent(), "<i id='state'>up</i>");
+  assert.equal(await page.locator("#p-state").textContent(), "<!--<script><i id='state'>up</i>");
   assert.match(await page.locator("#outcome").textContent(), /<b id='injected'>mine<\/b>, seed 1/);
   await page.close();
   assert.deepEqual(errors, []);

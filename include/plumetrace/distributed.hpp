@@ -65,7 +65,8 @@ int threads_per_rank(const Ranks& ranks, int threads);
 /// each rank that asks (one group per thread of that rank; rank 0 computes too, with its own
 /// threads), and hands the rows to the sink as they arrive, every `progress_interval`. On
 /// options.stop, or when a rank leaves early, it tells every rank to stop, keeps the rows that
-/// still arrive for 0.5 s, and returns an interrupted result. Every other rank must call
+/// still arrive for 0.5 s and those of its own running groups (each committed as it arrives),
+/// and returns an interrupted result. Every other rank must call
 /// serve_blocks. `runs_per_rank` (may be null) receives the runs each rank computed.
 TaskRunner coordinator(Ranks& ranks, std::vector<std::int64_t>* runs_per_rank);
 

@@ -424,6 +424,16 @@ int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
                    "launcher names it); the store is consistent\n");
       return kInterrupted;
     }
+    // every run is in, but the job did not end as it should: say so first, since the launcher
+    // may be about to kill this rank, then write the exports of the complete store
+    if (g_stop.load() || ranks.abandoned()) {
+      std::fprintf(stderr,
+                   "plumetrace: the MPI job stopped early: a signal, or a rank that ended early "
+                   "(the launcher names it); all %lld runs are in '%s'\n",
+                   static_cast<long long>(result.total), store->path().c_str());
+      finish_sweep(*plan, *store, cmd.runs, result, ranks_text(runs_per_rank));
+      return kInterrupted;
+    }
     return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(runs_per_rank));
   } catch (...) {
     // the other ranks may wait for this one: end the job once the error is reported

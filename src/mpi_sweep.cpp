@@ -40,6 +40,12 @@ constexpr int kAbandoned = 130;
 // sends SIGKILL about 1 s after SIGTERM); what does not arrive is computed by the next run
 constexpr double kStopWait = 0.5;
 
+// how long rank 0 waits, once every run is in, for the goodbye of a rank that has nothing left
+// to do
+// why: a live rank says it within milliseconds of being told there is no more; one that never
+// does has died, and waiting for the launcher to end the job would hang where it does not
+constexpr double kByeWait = 5.0;
+
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -120,12 +126,12 @@ std::int32_t decode_count(const std::vector<char>& bytes) {
   return n;
 }
 
-// the test hook: (rank, batches) from PLUMETRACE_TEST_KILL_RANK="r:m", or (-1, 0)
+// the test hook: (rank, blocks) from PLUMETRACE_TEST_KILL_RANK="r:m", or (-1, 0)
 std::pair<int, int> kill_hook() {
   const char* v = std::getenv("PLUMETRACE_TEST_KILL_RANK");
-  int rank = -1, batches = 0;
-  if (!v || std::sscanf(v, "%d:%d", &rank, &batches) != 2) return {-1, 0};
-  return {rank, batches};
+  int rank = -1, blocks = 0;
+  if (!v || std::sscanf(v, "%d:%d", &rank, &blocks) != 2) return {-1, 0};
+  return {rank, blocks};
 }
 
 // what rank 0 knows of a worker
@@ -174,6 +180,8 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
   CampaignResult result;
   result.total = static_cast<std::int64_t>(tasks.size());
   std::vector<RunRow> pending;
+  std::int64_t received = 0;  // rows from every rank, committed or pending
+  std::optional<Clock::time_point> all_in;
   auto last_commit = Clock::now();
   const auto commit = [&] {
     if (!pending.empty()) {
@@ -208,6 +216,7 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
       } else if (m->tag == kRows) {
         auto rows = decode_rows(m->bytes);
         per_rank[static_cast<std::size_t>(m->source)] += static_cast<std::int64_t>(rows.size());
+        received += static_cast<std::int64_t>(rows.size());
         for (auto& r : rows) pending.push_back(std::move(r));
       } else if (m->tag == kBye) {
         const bool early = state == Worker::kWorking;
@@ -220,6 +229,7 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
     }
     GroupPool::Batch own = pool.take(busy ? 0.0 : 0.001);
     per_rank[0] += static_cast<std::int64_t>(own.rows.size());
+    received += static_cast<std::int64_t>(own.rows.size());
     for (auto& r : own.rows) pending.push_back(std::move(r));
     outbox.progress();
 
@@ -234,6 +244,12 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
     // are waited for (they cannot be cut short, and their rows are kept as a local sweep keeps
     // them)
     if (stopping && own.idle && since(stop_time) > kStopWait) {
+      commit();
+      break;
+    }
+    // every run is in, yet a rank has not said goodbye: it died (the store is complete)
+    if (!all_in && received == result.total && own.idle) all_in = Clock::now();
+    if (all_in && since(*all_in) > kByeWait) {
       commit();
       break;
     }
@@ -319,7 +335,7 @@ bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
   GroupPool pool(sweeps, threads, options.make_controller, options.stop);
   Outbox outbox;
   bool asked = false, no_more = false, stopping = false;
-  int batches = 0;
+  int blocks = 0;
   for (;;) {
     bool busy = false;
     if (!stopping && options.stop && options.stop->load()) {
@@ -334,7 +350,13 @@ bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
     while (auto m = poll(0)) {
       busy = true;
       if (m->tag == kWork) {
-        if (!stopping) pool.add(decode_groups(m->bytes));
+        auto groups = decode_groups(m->bytes);
+        if (ranks.rank() == kill_rank && ++blocks >= kill_after) {
+          std::fprintf(stderr, "plumetrace: test hook: rank %d dies holding %zu group(s)\n",
+                       kill_rank, groups.size());
+          std::raise(SIGKILL);
+        }
+        if (!stopping) pool.add(std::move(groups));
         asked = false;
       } else if (m->tag == kNoMore) {
         no_more = true;
@@ -347,10 +369,13 @@ bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
     GroupPool::Batch batch = pool.take(busy ? 0.0 : 0.001);
     if (!batch.rows.empty()) {
       outbox.post(0, kRows, encode_rows(batch.rows));
-      if (ranks.rank() == kill_rank && ++batches >= kill_after) {
-        outbox.drain(1.0);
-        std::raise(SIGKILL);
-      }
+    }
+    // the hook's other case: told there is no more before the m-th block, it dies once its
+    // running groups' rows are sent, holding nothing
+    if (ranks.rank() == kill_rank && no_more && batch.idle) {
+      outbox.drain(1.0);
+      std::fprintf(stderr, "plumetrace: test hook: rank %d dies holding no work\n", kill_rank);
+      std::raise(SIGKILL);
     }
     outbox.progress();
     if (batch.idle && (stopping || (no_more && !asked))) break;

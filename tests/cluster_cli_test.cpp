@@ -142,8 +142,8 @@ const char* const kMpiEnv =
 // running side by side on a small machine do not pile onto the same cores
 Outcome mpirun(int ranks, const std::string& args, const std::string& env = "") {
   return run_command(std::string("env ") + kMpiEnv + " " + env + " " + PLUMETRACE_MPIEXEC + " -n " +
-                     std::to_string(ranks) + " --oversubscribe --bind-to none " + kCli + " " +
-                     args);
+                     std::to_string(ranks) + " --oversubscribe --bind-to none --timeout 100 " +
+                     kCli + " " + args);
 }
 
 // the runs each rank computed, from the summary line's "(runs per rank: a, b, c)"
@@ -176,7 +176,9 @@ TEST(MpiCli, ThreeOversubscribedRanksWithoutSharedPlumesEqualASingleProcessSweep
   ASSERT_EQ(o.code, 0) << o.err;
   const auto runs = runs_per_rank(o.out);
   ASSERT_EQ(runs.size(), 3u) << o.out;
-  for (const long r : runs) EXPECT_GT(r, 0) << o.out;  // every rank took blocks
+  // why: the work was shared out; not "every rank", since on a loaded machine one late rank may
+  // find every block taken
+  EXPECT_GT(runs[1] + runs[2], 0) << o.out;
   EXPECT_EQ(runs[0] + runs[1] + runs[2], 48);
   EXPECT_EQ(exports(sweep, store), baseline(sweep));
 }
@@ -197,20 +199,55 @@ TEST(MpiCli, AKilledRankEndsTheJobWithAConsistentStoreThatARerunCompletes) {
   const std::string store = testing::temp_path("killed", ".sqlite");
   const std::string args = "sweep " + sweep + " --no-share-plumes --threads 1 --quiet --store " +
                            store + " --out " + testing::temp_path("killed_out", "");
-  // rank 1 dies (SIGKILL) after its first rows; the launcher then ends the job: rank 0 gets
-  // SIGTERM, then SIGKILL 3 s later rather than Open MPI's default 1 s, on a loaded machine
+  // rank 1 dies (SIGKILL) when its first block arrives; the launcher then ends the job: rank 0
+  // gets SIGTERM, then SIGKILL 3 s later rather than Open MPI's default 1 s, on a loaded machine
   const Outcome killed =
       mpirun(3, args, "PLUMETRACE_TEST_KILL_RANK=1:1 OMPI_MCA_odls_base_sigkill_timeout=3");
   EXPECT_NE(killed.code, 0);
-  EXPECT_NE(killed.err.find("plumetrace: interrupted: "), std::string::npos) << killed.err;
-  EXPECT_NE(killed.err.find("the MPI job stopped"), std::string::npos) << killed.err;
   const auto kept = read_store_rows(store, nullptr);
-  EXPECT_LT(kept.size(), 48u);  // the dead rank's runs are missing, nothing else is wrong
+  if (killed.err.find("rank 1 dies holding no work") == std::string::npos) {
+    // the usual case: rank 1's block is never computed
+    EXPECT_NE(killed.err.find("rank 1 dies holding 1 group(s)"), std::string::npos) << killed.err;
+    EXPECT_NE(killed.err.find("plumetrace: interrupted: "), std::string::npos) << killed.err;
+    EXPECT_NE(killed.err.find("the MPI job stopped: "), std::string::npos) << killed.err;
+    EXPECT_LT(kept.size(), 48u);
+  } else {
+    // on a loaded machine ranks 0 and 2 may take every block before rank 1 asks
+    EXPECT_NE(killed.err.find("the MPI job stopped early: a signal, or a rank that ended early "
+                              "(the launcher names it); all 48 runs are in"),
+              std::string::npos)
+        << killed.err;
+    EXPECT_EQ(kept.size(), 48u);
+  }
+  // what the store holds is what a single process computes, row for row
+  const std::string full = baseline(sweep);
+  std::istringstream lines(exports(sweep, store));
+  std::string line;
+  for (std::size_t n = 0; std::getline(lines, line) && n <= kept.size(); ++n) {
+    EXPECT_NE(full.find(line + "\n"), std::string::npos) << line;
+  }
 
   const Outcome rerun = mpirun(2, args);
   ASSERT_EQ(rerun.code, 0) << rerun.err;
   EXPECT_NE(rerun.out.find("from the store"), std::string::npos);
-  EXPECT_EQ(exports(sweep, store), baseline(sweep));
+  EXPECT_EQ(exports(sweep, store), full);
+}
+
+TEST(MpiCli, ARankLostAfterItsLastBlockUnderALauncherThatKeepsTheJobIsGivenUpOnceEveryRunIsIn) {
+  const std::string sweep = write_sweep();
+  const std::string store = testing::temp_path("lost", ".sqlite");
+  const std::string out = testing::temp_path("lost_out", "");
+  // rank 1 dies when told there is no more work (it never gets 99 blocks of the 48 runs); this
+  // mpirun does not end the job when a process dies, so rank 0 must not wait for it forever
+  const Outcome o = mpirun(3,
+                           "sweep " + sweep + " --no-share-plumes --threads 1 --quiet --store " +
+                               store + " --out " + out,
+                           "PLUMETRACE_TEST_KILL_RANK=1:99 OMPI_MCA_orte_abort_on_non_zero_status=0");
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.err.find("rank 1 dies holding no work"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("all 48 runs are in '" + store + "'"), std::string::npos) << o.err;
+  // the exports of the complete store are written all the same
+  EXPECT_EQ(read_file(out + "/runs.csv") + read_file(out + "/summary.csv"), baseline(sweep));
 }
 
 TEST(MpiCli, OnlySweepRunsUnderMpirun) {

@@ -47,6 +47,8 @@ class Ranks {
   /// Makes the destructor end the whole job with `code` (MPI_Abort) instead of waiting in
   /// MPI_Finalize for ranks that may be gone or still waiting for this one.
   void abandon(int code) { abandon_code_ = code; }
+  /// True after abandon().
+  bool abandoned() const { return abandon_code_ != 0; }
 
  private:
   int rank_ = 0;
@@ -66,7 +68,9 @@ int threads_per_rank(const Ranks& ranks, int threads);
 /// threads), and hands the rows to the sink as they arrive, every `progress_interval`. On
 /// options.stop, or when a rank leaves early, it tells every rank to stop, keeps the rows that
 /// still arrive for 0.5 s and those of its own running groups (each committed as it arrives),
-/// and returns an interrupted result. Every other rank must call
+/// and returns an interrupted result. Once every run is in, it waits 5 s at most for the
+/// goodbye of the other ranks; a rank still silent then has died, and the job is abandoned
+/// (ranks.abandoned()) although the result is complete. Every other rank must call
 /// serve_blocks. `runs_per_rank` (may be null) receives the runs each rank computed.
 TaskRunner coordinator(Ranks& ranks, std::vector<std::int64_t>* runs_per_rank);
 
@@ -74,7 +78,9 @@ TaskRunner coordinator(Ranks& ranks, std::vector<std::int64_t>* runs_per_rank);
 /// threads (threads_per_rank), sending the rows of each finished group back, until rank 0 says
 /// there are no more (true) or to stop, or options.stop is set (false).
 /// Test hook: the environment variable PLUMETRACE_TEST_KILL_RANK="r:m" makes rank r kill
-/// itself (SIGKILL) after it has sent m batches of rows, to test a rank that dies.
+/// itself (SIGKILL) when its m-th block arrives, before computing it, or, when told there is no
+/// more work before that, once the rows of its running groups are sent (saying which on
+/// stderr), to test a rank that dies.
 bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
                   const CampaignOptions& options);
 

@@ -192,18 +192,20 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
       steps["wind_y_body"].push_back(sampled ? json(s.wind_body.y) : json(nullptr));
       steps["wind_z_body"].push_back(sampled ? json(s.wind_body.z) : json(nullptr));
     }
-    json snapshots = json::array();
-    for (const auto& snap : trace.snapshots) {
-      snapshots.push_back(
-          {{"time", snap.time}, {"x", snap.x}, {"y", snap.y}, {"z", snap.z}, {"w", snap.w}});
-    }
-    const json doc{{"plumetrace_trace", 1},
-                   {"config", json::parse(scenario_to_json(scenario))},
-                   {"result", result_json(result, info)},
-                   {"steps", steps},
-                   {"snapshots", snapshots}};
+    // why: written a snapshot at a time, as the dump of the whole document would be (keys in
+    // nlohmann's order), since the snapshots are most of it and a document of them all held
+    // several times the trace's memory
     auto out = open_for_writing(path);
-    out << doc.dump() << "\n";
+    out << R"({"config":)" << json::parse(scenario_to_json(scenario)).dump()
+        << R"(,"plumetrace_trace":1,"result":)" << result_json(result, info).dump()
+        << R"(,"snapshots":[)";
+    for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
+      const auto& snap = trace.snapshots[i];
+      if (i > 0) out << ',';
+      out << json{{"time", snap.time}, {"x", snap.x}, {"y", snap.y}, {"z", snap.z}, {"w", snap.w}}
+                 .dump();
+    }
+    out << R"(],"steps":)" << steps.dump() << "}\n";
     check_written(out, path);
     return;
   }

@@ -14,6 +14,7 @@
 #include "plumetrace/io.hpp"
 #include "plumetrace/trace.hpp"
 #include "plumetrace/world.hpp"
+#include "support/command.hpp"
 #include "support/temp_path.hpp"
 #include "view_data.hpp"
 
@@ -186,6 +187,20 @@ TEST(Trace, JsonTraceReadsBackBitForBit) {
   ASSERT_EQ(back.trace.snapshots.size(), run.trace.snapshots.size());
   EXPECT_EQ(back.trace.snapshots.back().x, run.trace.snapshots.back().x);
   EXPECT_EQ(back.trace.snapshots.back().w, run.trace.snapshots.back().w);
+}
+
+TEST(Trace, JsonTraceWrittenPieceByPieceIsTheDumpOfTheWholeDocument) {
+  const RecordedRun run = recorded_run();
+  ASSERT_GT(run.trace.snapshots.size(), 2u);
+  const std::string path = testing::temp_path("pieces", ".json");
+  write_trace(path, run.trace, run.scenario, run.result, run.info);
+  const std::string text = testing::read_file(path);
+  // nlohmann's dump is canonical (sorted keys, no spaces, shortest round-trip numbers): the
+  // file must be exactly that of the document it holds
+  const auto doc = nlohmann::json::parse(text);
+  EXPECT_EQ(doc.dump() + "\n", text);
+  EXPECT_EQ(doc["snapshots"].size(), run.trace.snapshots.size());
+  EXPECT_EQ(doc["steps"]["x"].size(), run.trace.steps.size());
 }
 
 TEST(Trace, ReadingABadTraceNamesTheFile) {

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -94,13 +93,6 @@ bool sets_key(const SweepDef& def, const std::string& key) {
     if (s.key == key) return true;
   }
   return false;
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.flush();
-  if (!out) throw IoError("cannot write '" + path + "'");
 }
 
 // runs the campaign (or a shard of it) with a progress bar; false when interrupted (after
@@ -199,7 +191,7 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
   }
   info.base_config = scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, base));
   write_exports(cmd.flags.out, sweeps, rows, cmd.runs);
-  write_text(cmd.flags.out + "/summary.json", build_summary(sweeps, rows, info));
+  write_text_file(cmd.flags.out + "/summary.json", build_summary(sweeps, rows, info));
   if (const int rc = draw_report(cmd.flags.out)) return rc;
   std::printf(
       "%lld runs (%lld computed now in %.1f s, %lld from the store)\nreport: %s/report.html "
@@ -232,10 +224,10 @@ int run_sensitivity_command(const SensitivityCommand& cmd) {
     return kInterrupted;
   }
   const auto matrix = sensitivity_matrix(sweeps, store.rows(), cmd.runs);
-  write_text(cmd.flags.out + "/sensitivity.json",
+  write_text_file(cmd.flags.out + "/sensitivity.json",
              sensitivity_json(matrix, cmd.runs, result.elapsed));
   const std::string md = sensitivity_markdown(matrix, cmd.runs, result.elapsed);
-  write_text(cmd.flags.out + "/sensitivity.md", md);
+  write_text_file(cmd.flags.out + "/sensitivity.md", md);
   std::fputs(md.c_str(), stdout);
   // a report already in the folder gains the matrix
   if (std::filesystem::exists(cmd.flags.out + "/summary.json")) return draw_report(cmd.flags.out);
@@ -363,6 +355,16 @@ std::string failed_ranks(const std::vector<int>& codes) {
   return text;
 }
 
+// why the job stopped, as rank 0 knows it
+std::string stop_cause(const JobReport& report) {
+  if (report.silent_ranks.empty()) {
+    return "a signal, or a rank that ended early (the launcher names it)";
+  }
+  std::string ranks;
+  for (const int r : report.silent_ranks) ranks += (ranks.empty() ? "" : ", ") + std::to_string(r);
+  return "no goodbye from rank(s) " + ranks + " (killed, crashed, or not done stopping)";
+}
+
 // every rank reads the sweep (rank 0 also opens the store) and they agree that all went well
 // and that every rank expanded the same sweep; returns 0, or the exit code after saying why
 int agree_on_sweep(Ranks& ranks, const SweepCommand& cmd, std::optional<SweepPlan>& plan,
@@ -415,26 +417,24 @@ int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
     options.stop = &g_stop;
     if (ranks.rank() != 0) return serve_blocks(ranks, plan->sweeps, options) ? 0 : kInterrupted;
 
-    std::vector<std::int64_t> runs_per_rank;
+    JobReport report;
     CampaignResult result;
     if (!run_with_progress(sweep_label(*plan), plan->sweeps, *store, cmd.runs, sweep_flags(cmd),
-                           result, plan->shard, coordinator(ranks, &runs_per_rank))) {
-      std::fprintf(stderr,
-                   "plumetrace: the MPI job stopped: a signal, or a rank that ended early (the "
-                   "launcher names it); the store is consistent\n");
+                           result, plan->shard, coordinator(ranks, &report))) {
+      std::fprintf(stderr, "plumetrace: the MPI job stopped: %s; the store is consistent\n",
+                   stop_cause(report).c_str());
       return kInterrupted;
     }
     // every run is in, but the job did not end as it should: say so first, since the launcher
     // may be about to kill this rank, then write the exports of the complete store
     if (g_stop.load() || ranks.abandoned()) {
-      std::fprintf(stderr,
-                   "plumetrace: the MPI job stopped early: a signal, or a rank that ended early "
-                   "(the launcher names it); all %lld runs are in '%s'\n",
-                   static_cast<long long>(result.total), store->path().c_str());
-      finish_sweep(*plan, *store, cmd.runs, result, ranks_text(runs_per_rank));
+      std::fprintf(stderr, "plumetrace: the MPI job stopped early: %s; all %lld runs are in '%s'\n",
+                   stop_cause(report).c_str(), static_cast<long long>(result.total),
+                   store->path().c_str());
+      finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank));
       return kInterrupted;
     }
-    return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(runs_per_rank));
+    return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank));
   } catch (...) {
     // the other ranks may wait for this one: end the job once the error is reported
     ranks.abandon(exit_code(std::current_exception()));

@@ -3,8 +3,10 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -68,17 +70,39 @@ toml::table parse_toml_file(const std::string& path, const std::string& what) {
   }
 }
 
-std::ofstream open_for_writing(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw IoError("cannot write '" + path + "'");
-  out.precision(17);
-  return out;
-}
+// a file written whole or not at all: into PATH.part, renamed over PATH by commit(); dropped
+// when destroyed uncommitted (an error, an exception)
+// why: a reader, or a process killed mid-write (a launcher ending a job), never sees half a file
+class OutputFile {
+ public:
+  explicit OutputFile(std::string path) : path_(std::move(path)), part_(path_ + ".part") {
+    out_.open(part_, std::ios::binary | std::ios::trunc);
+    if (!out_) throw IoError("cannot write '" + path_ + "'");
+    out_.precision(17);
+  }
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  ~OutputFile() {
+    if (committed_) return;
+    out_.close();
+    std::remove(part_.c_str());
+  }
+  std::ofstream& stream() { return out_; }
+  void commit() {
+    out_.close();
+    if (!out_) throw IoError("error while writing '" + path_ + "'");
+    if (std::rename(part_.c_str(), path_.c_str()) != 0) {
+      throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
+    }
+    committed_ = true;
+  }
 
-void check_written(std::ofstream& out, const std::string& path) {
-  out.flush();
-  if (!out) throw IoError("error while writing '" + path + "'");
-}
+ private:
+  std::string path_;
+  std::string part_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
@@ -88,6 +112,14 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }  // namespace
 
 std::string_view version() { return kVersion; }
+
+void write_text_file(const std::string& path, std::string_view text) {
+  OutputFile file(path);
+  file.stream() << text;
+  file.commit();
+}
+
+void check_writable(const std::string& path) { OutputFile probe(path); }
 
 std::vector<Setting> read_scenario_file(const std::string& path) {
   const toml::table table = parse_toml_file(path, "scenario file");
@@ -159,7 +191,7 @@ void check_trace_path(const std::string& path) {
   }
   std::vector<std::string> files{path};
   if (ends_with(path, ".csv")) files.push_back(path.substr(0, path.size() - 4) + ".filaments.csv");
-  for (const auto& f : files) open_for_writing(f);
+  for (const auto& f : files) check_writable(f);
 }
 
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
@@ -195,7 +227,8 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
     // why: written a snapshot at a time, as the dump of the whole document would be (keys in
     // nlohmann's order), since the snapshots are most of it and a document of them all held
     // several times the trace's memory
-    auto out = open_for_writing(path);
+    OutputFile file(path);
+    auto& out = file.stream();
     out << R"({"config":)" << json::parse(scenario_to_json(scenario)).dump()
         << R"(,"plumetrace_trace":1,"result":)" << result_json(result, info).dump()
         << R"(,"snapshots":[)";
@@ -206,13 +239,14 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
                  .dump();
     }
     out << R"(],"steps":)" << steps.dump() << "}\n";
-    check_written(out, path);
+    file.commit();
     return;
   }
   if (!ends_with(path, ".csv")) {
     throw IoError("trace file '" + path + "': the name must end in .csv or .json");
   }
-  auto out = open_for_writing(path);
+  OutputFile file(path);
+  auto& out = file.stream();
   out << "time,x,y,heading,odometer,state,odor,concentration,wind_samples,wind_x_body,"
          "wind_y_body,wind_z_body\n";
   for (const auto& s : trace.steps) {
@@ -225,10 +259,9 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
       out << ",,\n";
     }
   }
-  check_written(out, path);
-
   const std::string snap_path = path.substr(0, path.size() - 4) + ".filaments.csv";
-  auto snaps = open_for_writing(snap_path);
+  OutputFile snap_file(snap_path);
+  auto& snaps = snap_file.stream();
   snaps << "time,x,y,z,w\n";
   for (const auto& snap : trace.snapshots) {
     for (std::size_t i = 0; i < snap.x.size(); ++i) {
@@ -236,7 +269,8 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
             << snap.w[i] << '\n';
     }
   }
-  check_written(snaps, snap_path);
+  file.commit();
+  snap_file.commit();
 }
 
 namespace {
@@ -513,7 +547,8 @@ std::string csv_number(double v) {
 void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                     const std::vector<RunRow>& rows) {
   const auto keys = axis_keys(sweeps);
-  auto out = open_for_writing(path);
+  OutputFile file(path);
+  auto& out = file.stream();
   out << "sweep,point";
   for (const auto& k : keys) out << ',' << k;
   out << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
@@ -529,13 +564,14 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
         << m.losses << ',' << csv_number(m.odor_fraction) << ',' << m.steps << ',' << m.wind_samples
         << '\n';
   }
-  check_written(out, path);
+  file.commit();
 }
 
 void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                        const std::vector<RunRow>& rows, int runs_override) {
   const auto keys = axis_keys(sweeps);
-  auto out = open_for_writing(path);
+  OutputFile file(path);
+  auto& out = file.stream();
   out << "sweep,point";
   for (const auto& k : keys) out << ',' << k;
   out << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
@@ -556,7 +592,7 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
           << ',' << csv_number(st.mean_time) << ',' << csv_number(st.mean_losses) << '\n';
     }
   }
-  check_written(out, path);
+  file.commit();
 }
 
 void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
@@ -597,13 +633,14 @@ void write_results_json(const std::string& path, const std::vector<ExpandedSweep
                           {"axes", axes},
                           {"points", points}});
   }
-  auto out = open_for_writing(path);
+  OutputFile file(path);
+  auto& out = file.stream();
   out << json{{"plumetrace_results", 1},
               {"version", std::string(version())},
               {"sweeps", doc_sweeps}}
              .dump(1)
       << "\n";
-  check_written(out, path);
+  file.commit();
 }
 
 }  // namespace plumetrace

@@ -139,7 +139,7 @@ enum class Worker { kWorking, kToldNoMore, kToldStop, kGone };
 
 CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
                           const std::vector<RunTask>& tasks, const CampaignOptions& options,
-                          const RowSink& sink, std::vector<std::int64_t>* runs_per_rank) {
+                          const RowSink& sink, JobReport* report) {
   const auto start = Clock::now();
   const int threads = threads_per_rank(ranks, options.threads);
   int all_threads = 0;
@@ -242,8 +242,8 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
     if (done) break;
     // a worker that died never says goodbye: past the wait, only this rank's own running groups
     // are waited for (they cannot be cut short, and their rows are kept as a local sweep keeps
-    // them)
-    if (stopping && own.idle && since(stop_time) > kStopWait) {
+    // them); with every run in, there is nothing to wait for
+    if (stopping && own.idle && (since(stop_time) > kStopWait || received == result.total)) {
       commit();
       break;
     }
@@ -257,9 +257,16 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
   }
 
   if (!outbox.drain(1.0) || present > 0) ranks.abandon(kAbandoned);
-  if (runs_per_rank) *runs_per_rank = per_rank;
+  if (report) {
+    report->runs_per_rank = per_rank;
+    report->silent_ranks.clear();
+    for (int w = 1; w < ranks.size(); ++w) {
+      if (workers[static_cast<std::size_t>(w)] != Worker::kGone) report->silent_ranks.push_back(w);
+    }
+  }
   result.interrupted = result.computed < result.total;
-  result.elapsed = since(start);
+  // why: the time spent waiting for the goodbye of a silent rank is not the sweep's
+  result.elapsed = std::chrono::duration<double>((all_in ? *all_in : Clock::now()) - start).count();
   return result;
 }
 
@@ -319,11 +326,11 @@ std::string Ranks::broadcast(const std::string& text) const {
   return out;
 }
 
-TaskRunner coordinator(Ranks& ranks, std::vector<std::int64_t>* runs_per_rank) {
-  return [&ranks, runs_per_rank](const std::vector<ExpandedSweep>& sweeps,
+TaskRunner coordinator(Ranks& ranks, JobReport* report) {
+  return [&ranks, report](const std::vector<ExpandedSweep>& sweeps,
                                  const std::vector<RunTask>& tasks, const CampaignOptions& options,
                                  const RowSink& sink) {
-    return coordinate(ranks, sweeps, tasks, options, sink, runs_per_rank);
+    return coordinate(ranks, sweeps, tasks, options, sink, report);
   };
 }
 
@@ -352,7 +359,9 @@ bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
       if (m->tag == kWork) {
         auto groups = decode_groups(m->bytes);
         if (ranks.rank() == kill_rank && ++blocks >= kill_after) {
-          std::fprintf(stderr, "plumetrace: test hook: rank %d dies holding %zu group(s)\n",
+          std::fprintf(stderr,
+                       "plumetrace: test hook: rank %d dies on receiving a block of %zu group(s) "
+                       "(and with the groups it runs)\n",
                        kill_rank, groups.size());
           std::raise(SIGKILL);
         }
@@ -373,8 +382,9 @@ bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
     // the hook's other case: told there is no more before the m-th block, it dies once its
     // running groups' rows are sent, holding nothing
     if (ranks.rank() == kill_rank && no_more && batch.idle) {
-      outbox.drain(1.0);
-      std::fprintf(stderr, "plumetrace: test hook: rank %d dies holding no work\n", kill_rank);
+      const bool sent = outbox.drain(1.0);
+      std::fprintf(stderr, "plumetrace: test hook: rank %d dies holding no work%s\n", kill_rank,
+                   sent ? "" : " (but its last rows were not sent within 1 s)");
       std::raise(SIGKILL);
     }
     outbox.progress();

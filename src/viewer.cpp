@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -440,8 +439,7 @@ void check_view_path(const std::string& path, const std::string& option) {
   if (!ends_with(path, ".html") && !ends_with(path, ".svg")) {
     throw ConfigError(option + " '" + path + "': the name must end in .html or .svg");
   }
-  std::ofstream out(path, std::ios::app);
-  if (!out) throw IoError("cannot write '" + path + "'");
+  check_writable(path);
 }
 
 std::string viewer_html(const RecordedRun& run, const ViewerOptions& options) {
@@ -595,11 +593,7 @@ void write_view(const std::string& path, const RecordedRun& run, const ViewerOpt
   check_view_path(path, "view");
   const std::string text =
       ends_with(path, ".svg") ? figure_svg(run, options) : viewer_html(run, options);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw IoError("cannot write '" + path + "'");
-  out << text;
-  out.flush();
-  if (!out) throw IoError("error while writing '" + path + "'");
+  write_text_file(path, text);
 }
 
 }  // namespace plumetrace

@@ -62,6 +62,14 @@ class Ranks {
 /// among the job's processes on it (at least one).
 int threads_per_rank(const Ranks& ranks, int threads);
 
+/// What rank 0 knows of the job's ranks once a sweep has ended.
+struct JobReport {
+  /// Runs each rank computed, by rank.
+  std::vector<std::int64_t> runs_per_rank;
+  /// Ranks that never said goodbye (they died, or the job was ended first), in rank order.
+  std::vector<int> silent_ranks;
+};
+
 /// The TaskRunner of rank 0 in a job of several ranks. It splits the tasks into plume groups
 /// (as run_tasks does, for the threads of every rank together), hands them out in blocks to
 /// each rank that asks (one group per thread of that rank; rank 0 computes too, with its own
@@ -71,8 +79,8 @@ int threads_per_rank(const Ranks& ranks, int threads);
 /// and returns an interrupted result. Once every run is in, it waits 5 s at most for the
 /// goodbye of the other ranks; a rank still silent then has died, and the job is abandoned
 /// (ranks.abandoned()) although the result is complete. Every other rank must call
-/// serve_blocks. `runs_per_rank` (may be null) receives the runs each rank computed.
-TaskRunner coordinator(Ranks& ranks, std::vector<std::int64_t>* runs_per_rank);
+/// serve_blocks. `report` (may be null) receives what each rank did.
+TaskRunner coordinator(Ranks& ranks, JobReport* report);
 
 /// On ranks other than 0: computes the blocks that rank 0 hands out, on `options.threads`
 /// threads (threads_per_rank), sending the rows of each finished group back, until rank 0 says

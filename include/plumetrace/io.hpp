@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plumetrace/probe.hpp"
@@ -21,6 +22,15 @@ class IoError : public std::runtime_error {
 
 /// The program version.
 std::string_view version();
+
+/// Every file this library writes is written whole or not at all: into `PATH.part`, renamed
+/// over `PATH` once complete (a reader, or a process killed while writing, never sees half a
+/// file; nothing is left behind on an error). Writes `text` to `path` so; throws IoError naming
+/// the file.
+void write_text_file(const std::string& path, std::string_view text);
+
+/// Throws IoError naming `path` when it cannot be written (it tries, and leaves nothing behind).
+void check_writable(const std::string& path);
 
 /// Reads a TOML scenario file into settings (one per key, in file order); throws ConfigError
 /// naming the file when it cannot be read or is not valid TOML (with line and column).

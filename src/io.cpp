@@ -520,6 +520,13 @@ const ExpandedSweep* find_sweep(const std::vector<ExpandedSweep>& sweeps, const 
   return nullptr;
 }
 
+// the first columns' names: sweep, point, then one per axis key
+std::string axis_header(const std::vector<std::string>& keys) {
+  std::string header = "sweep,point";
+  for (const auto& k : keys) header += ',' + k;
+  return header;
+}
+
 // the axis columns of one point: its value under each key, empty where the sweep lacks the key
 std::string axis_cells(const ExpandedSweep& sweep, int point,
                        const std::vector<std::string>& keys) {
@@ -549,9 +556,7 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
   const auto keys = axis_keys(sweeps);
   OutputFile file(path);
   auto& out = file.stream();
-  out << "sweep,point";
-  for (const auto& k : keys) out << ',' << k;
-  out << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
+  out << axis_header(keys) << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
          "steps,wind_samples\n";
   for (const auto& r : rows) {
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
@@ -572,9 +577,7 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
   const auto keys = axis_keys(sweeps);
   OutputFile file(path);
   auto& out = file.stream();
-  out << "sweep,point";
-  for (const auto& k : keys) out << ',' << k;
-  out << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
+  out << axis_header(keys) << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
          "overhead_mean,overhead_lo,overhead_hi,overhead_median,overhead_q1,overhead_q3,"
          "mean_time,mean_losses\n";
   for (const auto& sweep : sweeps) {

@@ -225,7 +225,7 @@ int run_sensitivity_command(const SensitivityCommand& cmd) {
   }
   const auto matrix = sensitivity_matrix(sweeps, store.rows(), cmd.runs);
   write_text_file(cmd.flags.out + "/sensitivity.json",
-             sensitivity_json(matrix, cmd.runs, result.elapsed));
+                  sensitivity_json(matrix, cmd.runs, result.elapsed));
   const std::string md = sensitivity_markdown(matrix, cmd.runs, result.elapsed);
   write_text_file(cmd.flags.out + "/sensitivity.md", md);
   std::fputs(md.c_str(), stdout);

@@ -556,7 +556,8 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
   const auto keys = axis_keys(sweeps);
   OutputFile file(path);
   auto& out = file.stream();
-  out << axis_header(keys) << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
+  out << axis_header(keys)
+      << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
          "steps,wind_samples\n";
   for (const auto& r : rows) {
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
@@ -577,7 +578,8 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
   const auto keys = axis_keys(sweeps);
   OutputFile file(path);
   auto& out = file.stream();
-  out << axis_header(keys) << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
+  out << axis_header(keys)
+      << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
          "overhead_mean,overhead_lo,overhead_hi,overhead_median,overhead_q1,overhead_q3,"
          "mean_time,mean_losses\n";
   for (const auto& sweep : sweeps) {

@@ -327,11 +327,11 @@ std::string Ranks::broadcast(const std::string& text) const {
 }
 
 TaskRunner coordinator(Ranks& ranks, JobReport* report) {
-  return [&ranks, report](const std::vector<ExpandedSweep>& sweeps,
-                                 const std::vector<RunTask>& tasks, const CampaignOptions& options,
-                                 const RowSink& sink) {
-    return coordinate(ranks, sweeps, tasks, options, sink, report);
-  };
+  return
+      [&ranks, report](const std::vector<ExpandedSweep>& sweeps, const std::vector<RunTask>& tasks,
+                       const CampaignOptions& options, const RowSink& sink) {
+        return coordinate(ranks, sweeps, tasks, options, sink, report);
+      };
 }
 
 bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,

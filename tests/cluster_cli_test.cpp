@@ -248,10 +248,11 @@ TEST(MpiCli, ARankLostAfterItsLastBlockUnderALauncherThatKeepsTheJobIsGivenUpOnc
   const std::string out = testing::temp_path("lost_out", "");
   // rank 1 dies when told there is no more work (it never gets 99 blocks of the 48 runs); this
   // mpirun does not end the job when a process dies, so rank 0 must not wait for it forever
-  const Outcome o = mpirun(3,
-                           "sweep " + sweep + " --no-share-plumes --threads 1 --quiet --store " +
-                               store + " --out " + out,
-                           "PLUMETRACE_TEST_KILL_RANK=1:99 OMPI_MCA_orte_abort_on_non_zero_status=0");
+  const Outcome o =
+      mpirun(3,
+             "sweep " + sweep + " --no-share-plumes --threads 1 --quiet --store " + store +
+                 " --out " + out,
+             "PLUMETRACE_TEST_KILL_RANK=1:99 OMPI_MCA_orte_abort_on_non_zero_status=0");
   EXPECT_NE(o.code, 0);
   EXPECT_NE(o.err.find("rank 1 dies holding no work\n"), std::string::npos) << o.err;
   EXPECT_NE(o.err.find("the MPI job stopped early: no goodbye from rank(s) 1 (killed, crashed, "

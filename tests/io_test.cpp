@@ -70,8 +70,9 @@ TEST(OutputFiles, ACsvTraceWritesBothFilesWhole) {
   const std::string path = testing::temp_path("trace", ".csv");
   const std::string filaments = path.substr(0, path.size() - 4) + ".filaments.csv";
   write_trace(path, trace, Scenario{}, RunResult{}, RunInfo{"casting", 1, 0});
-  EXPECT_EQ(testing::read_file(filaments), "time,x,y,z,w\n0,1,0,0.10000000000000001,0.01\n"
-                                           "0,2,0.5,0.10000000000000001,0.02\n");
+  EXPECT_EQ(testing::read_file(filaments),
+            "time,x,y,z,w\n0,1,0,0.10000000000000001,0.01\n"
+            "0,2,0.5,0.10000000000000001,0.02\n");
   const std::string steps = testing::read_file(path);
   EXPECT_EQ(std::count(steps.begin(), steps.end(), '\n'), 4);  // header and three steps
   EXPECT_FALSE(fs::exists(path + ".part"));

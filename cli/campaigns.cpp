@@ -346,13 +346,20 @@ std::string ranks_text(const std::vector<std::int64_t>& runs_per_rank) {
   return text + ")";
 }
 
+// ranks as "1, 3"
+std::string rank_list(const std::vector<int>& ranks) {
+  std::string text;
+  for (const int r : ranks) text += (text.empty() ? "" : ", ") + std::to_string(r);
+  return text;
+}
+
 // the ranks whose `codes` are not 0, as "1, 3"
 std::string failed_ranks(const std::vector<int>& codes) {
-  std::string text;
+  std::vector<int> failed;
   for (std::size_t r = 0; r < codes.size(); ++r) {
-    if (codes[r] != 0) text += (text.empty() ? "" : ", ") + std::to_string(r);
+    if (codes[r] != 0) failed.push_back(static_cast<int>(r));
   }
-  return text;
+  return rank_list(failed);
 }
 
 // why the job stopped, as rank 0 knows it
@@ -360,9 +367,8 @@ std::string stop_cause(const JobReport& report) {
   if (report.silent_ranks.empty()) {
     return "a signal, or a rank that ended early (the launcher names it)";
   }
-  std::string ranks;
-  for (const int r : report.silent_ranks) ranks += (ranks.empty() ? "" : ", ") + std::to_string(r);
-  return "no goodbye from rank(s) " + ranks + " (killed, crashed, or not done stopping)";
+  return "no goodbye from rank(s) " + rank_list(report.silent_ranks) +
+         " (killed, crashed, or not done stopping)";
 }
 
 // every rank reads the sweep (rank 0 also opens the store) and they agree that all went well

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <string_view>
@@ -25,12 +26,28 @@ struct SetStats {
   int fixed_index = -1;            ///< index of the paper's fixed value in `values`, -1 if absent
 };
 
+/// One tested part of a claim, with its signed margin (docs/claims.md, "Margins").
+struct ClaimPart {
+  /// The part's figures, ending in "-> yes", "-> no" or "-> unclear".
+  std::string text;
+  /// kHolds (yes), kDoesNotHold (no) or kUnclear.
+  Verdict support = Verdict::kUnclear;
+  /// How far the interval lies on the claimed side of the part's threshold, in units of the
+  /// interval's width: positive exactly when the part is supported; NaN when the interval
+  /// cannot be computed.
+  double margin = NAN;
+};
+
 /// The verdict on one claim of SPEC section 8, with the figures that decided it.
 struct ClaimResult {
   int id = 0;                           ///< claim number, 1-11
   std::string text;                     ///< the claim as SPEC section 8 words it
   Verdict verdict = Verdict::kUnclear;  ///< holds, does not hold or unclear
   std::string evidence;                 ///< the deciding figures, one clause per tested part
+  std::vector<ClaimPart> parts;         ///< the tested parts, in evidence order
+  /// The claim's margin: the smallest of its parts' (a conjunction holds when every part does);
+  /// for claim 3, the larger of its two patterns' margins. NaN when a part's margin is NaN.
+  double margin = NAN;
 };
 
 /// Evaluates SPEC section 8's claims 1-11 from the nine sets, keyed by name "A".."I". A claim

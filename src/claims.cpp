@@ -74,53 +74,110 @@ std::string join(const std::vector<std::string>& parts, const char* sep) {
 
 enum class Support { kYes, kNo, kUnclear };
 
+// The outcome of one test: its support and its signed margin (docs/claims.md, "Margins"): how far
+// the interval lies on the claimed side of the threshold, in widths of the interval; >= 0 when
+// the test says yes (> 0 but exactly at an "at least" limit), < 0 otherwise, NaN when the
+// interval cannot be computed.
+struct Test {
+  Support support = Support::kUnclear;
+  double margin = NAN;
+};
+
 struct Part {
   Support support = Support::kUnclear;
+  double margin = NAN;
   std::string text;
 };
 
-Part part(Support support, const std::string& text) {
-  const char* word = support == Support::kYes ? "yes" : support == Support::kNo ? "no" : "unclear";
-  return {support, text + " -> " + word};
+Part part(const Test& test, const std::string& text) {
+  const Support s = test.support;
+  const char* word = s == Support::kYes ? "yes" : s == Support::kNo ? "no" : "unclear";
+  return {s, test.margin, text + " -> " + word};
 }
+
+// A distance from a threshold (positive on the claimed side) in units of a width; NaN when
+// either is not a number. why: a floor on the width keeps a zero-width interval (a single
+// degenerate value) from giving an infinite margin.
+double in_widths(double distance, double width) {
+  constexpr double kMinWidth = 1e-6;
+  if (std::isnan(distance) || std::isnan(width)) return NAN;
+  return distance / std::max(width, kMinWidth);
+}
+
+double width(const Interval& i) { return i.hi - i.lo; }
 
 // "The effect is positive": yes when the interval excludes zero, no when it excludes every
 // effect of at least min_effect. NaN ends give unclear.
-Support directional(const Interval& effect, double min_effect) {
-  if (effect.lo > 0.0) return Support::kYes;
-  if (effect.hi < min_effect) return Support::kNo;
-  return Support::kUnclear;
+Test directional(const Interval& effect, double min_effect) {
+  Test t{Support::kUnclear, in_widths(effect.lo, width(effect))};
+  if (effect.lo > 0.0)
+    t.support = Support::kYes;
+  else if (effect.hi < min_effect)
+    t.support = Support::kNo;
+  return t;
 }
 
 // "The effect is negligible" (two-sided): yes when the interval lies inside (-margin, margin),
 // no when it lies wholly outside.
-Support within(const Interval& effect, double margin) {
-  if (effect.lo > -margin && effect.hi < margin) return Support::kYes;
-  if (effect.lo >= margin || effect.hi <= -margin) return Support::kNo;
-  return Support::kUnclear;
+Test within(const Interval& effect, double margin) {
+  Test t{Support::kUnclear,
+         in_widths(std::fmin(effect.lo + margin, margin - effect.hi), width(effect))};
+  if (std::isnan(effect.lo) || std::isnan(effect.hi)) t.margin = NAN;
+  if (effect.lo > -margin && effect.hi < margin)
+    t.support = Support::kYes;
+  else if (effect.lo >= margin || effect.hi <= -margin)
+    t.support = Support::kNo;
+  return t;
 }
 
 // "The quantity is below the limit".
-Support below(const Interval& value, double limit) {
-  if (value.hi < limit) return Support::kYes;
-  if (value.lo >= limit) return Support::kNo;
-  return Support::kUnclear;
+Test below(const Interval& value, double limit) {
+  Test t{Support::kUnclear, in_widths(limit - value.hi, width(value))};
+  if (value.hi < limit)
+    t.support = Support::kYes;
+  else if (value.lo >= limit)
+    t.support = Support::kNo;
+  return t;
 }
 
 // "The quantity is at least the limit".
-Support at_least(const Interval& value, double limit) {
-  if (value.lo >= limit) return Support::kYes;
-  if (value.hi < limit) return Support::kNo;
-  return Support::kUnclear;
+Test at_least(const Interval& value, double limit) {
+  Test t{Support::kUnclear, in_widths(value.lo - limit, width(value))};
+  if (value.lo >= limit)
+    t.support = Support::kYes;
+  else if (value.hi < limit)
+    t.support = Support::kNo;
+  return t;
 }
 
-Support all_of(std::initializer_list<Support> supports) {
-  bool all_yes = true;
-  for (Support s : supports) {
-    if (s == Support::kNo) return Support::kNo;
-    if (s != Support::kYes) all_yes = false;
+// The smallest of several margins: a conjunction is as close to failing as its weakest part.
+// NaN when any is NaN.
+double weakest(std::initializer_list<double> margins) {
+  double out = INFINITY;
+  for (double m : margins) {
+    if (std::isnan(m)) return NAN;
+    out = std::fmin(out, m);
   }
-  return all_yes ? Support::kYes : Support::kUnclear;
+  return margins.size() ? out : NAN;
+}
+
+Test all_of(std::initializer_list<Test> tests) {
+  bool all_yes = true;
+  Test out{Support::kUnclear, INFINITY};
+  for (const Test& t : tests) {
+    out.margin =
+        std::isnan(t.margin) || std::isnan(out.margin) ? NAN : std::fmin(out.margin, t.margin);
+    if (t.support == Support::kNo) out.support = Support::kNo;
+    if (t.support != Support::kYes) all_yes = false;
+  }
+  if (out.support != Support::kNo && all_yes) out.support = Support::kYes;
+  return out;
+}
+
+Verdict verdict_of(Support s) {
+  return s == Support::kYes  ? Verdict::kHolds
+         : s == Support::kNo ? Verdict::kDoesNotHold
+                             : Verdict::kUnclear;
 }
 
 // A claim is a conjunction of its parts.
@@ -137,14 +194,24 @@ Verdict combine(const std::vector<Part>& parts) {
 struct Decision {
   Verdict verdict = Verdict::kUnclear;
   std::string evidence;
+  std::vector<ClaimPart> parts;
+  double margin = NAN;
 };
 
 // The verdict of the parts; the evidence is an optional preamble, then each part's figures.
 Decision decide(const std::vector<Part>& parts, const std::string& preamble = "") {
   std::vector<std::string> texts;
   if (!preamble.empty()) texts.push_back(preamble);
-  for (const Part& p : parts) texts.push_back(p.text);
-  return {combine(parts), join(texts, "; ")};
+  Decision d;
+  d.margin = parts.empty() ? NAN : INFINITY;
+  for (const Part& p : parts) {
+    texts.push_back(p.text);
+    d.parts.push_back({p.text, verdict_of(p.support), p.margin});
+    d.margin = std::isnan(p.margin) || std::isnan(d.margin) ? NAN : std::fmin(d.margin, p.margin);
+  }
+  d.verdict = combine(parts);
+  d.evidence = join(texts, "; ");
+  return d;
 }
 
 // pooled groups of points
@@ -332,7 +399,11 @@ Needed need(const Sets& sets, std::initializer_list<const char*> names, int min_
   return out;
 }
 
-Decision unclear_because(const std::string& problem) { return {Verdict::kUnclear, problem}; }
+Decision unclear_because(const std::string& problem) {
+  Decision d;
+  d.evidence = problem;
+  return d;
+}
 
 // recurring parts
 
@@ -386,11 +457,15 @@ Decision claim2(const Sets& sets) {
       at_least(hi.rate.ci(), kAcceptable),
       "beta > 20 acceptable: " + hi.label + " " + describe(hi.rate) + " vs " + num(kAcceptable)));
   // "only": no single value at or below 20 deg reaches an acceptable rate
-  Support none = Support::kYes;
+  Test none{Support::kYes, INFINITY};
   int best = small.front();
   for (int i : small) {
-    const Support s = below(a.points[i].success_ci, kAcceptable);
-    if (s == Support::kNo || (s == Support::kUnclear && none == Support::kYes)) none = s;
+    const Test s = below(a.points[i].success_ci, kAcceptable);
+    if (s.support == Support::kNo ||
+        (s.support == Support::kUnclear && none.support == Support::kYes)) {
+      none.support = s.support;
+    }
+    none.margin = weakest({none.margin, s.margin});
     if (a.points[i].success_rate > a.points[best].success_rate) best = i;
   }
   const Group best_group = pool(a, {best});
@@ -407,13 +482,17 @@ Decision claim3(const Sets& sets) {
   const Interval success_up = rate_difference(hi.rate, lo.rate);
   const Interval overhead_up = relative_difference(hi.overhead, lo.overhead, lo.overhead);
   // either success drops at the low end and overhead worsens at the high end, or the reverse
-  const Support rising = all_of(
+  const Test rising_test = all_of(
       {directional(success_up, kSuccessMargin), directional(overhead_up, kMinOverheadEffect)});
-  const Support falling = all_of({directional(negate(success_up), kSuccessMargin),
-                                  directional(negate(overhead_up), kMinOverheadEffect)});
-  Support either = Support::kUnclear;
-  if (rising == Support::kYes || falling == Support::kYes) either = Support::kYes;
-  if (rising == Support::kNo && falling == Support::kNo) either = Support::kNo;
+  const Test falling_test = all_of({directional(negate(success_up), kSuccessMargin),
+                                    directional(negate(overhead_up), kMinOverheadEffect)});
+  const Support rising = rising_test.support, falling = falling_test.support;
+  // why: either pattern will do, so the claim is as close to holding as the better pattern
+  Test either{Support::kUnclear, std::isnan(rising_test.margin) || std::isnan(falling_test.margin)
+                                     ? NAN
+                                     : std::fmax(rising_test.margin, falling_test.margin)};
+  if (rising == Support::kYes || falling == Support::kYes) either.support = Support::kYes;
+  if (rising == Support::kNo && falling == Support::kNo) either.support = Support::kNo;
   std::string which = "neither pattern resolved";
   if (rising == Support::kNo && falling == Support::kNo) which = "neither pattern";
   if (rising == Support::kYes) which = "success drops at low d_lost, overhead worsens at high";
@@ -569,9 +648,8 @@ Decision claim8(const Sets& sets) {
   std::vector<Part> parts;
   const LineFit fit = fit_line(g);
   if (!fit.ok) {
-    parts.push_back(
-        part(Support::kUnclear,
-             format("too few points with >= 2 successful runs to fit a line (%d)", fit.points)));
+    parts.push_back(part(
+        Test{}, format("too few points with >= 2 successful runs to fit a line (%d)", fit.points)));
   } else {
     // the fitted rise over the range, as a fraction of the overhead at its low end
     const double to_rise = fit.span / fit.level;
@@ -586,10 +664,14 @@ Decision claim8(const Sets& sets) {
                                                     " vs " + margin_pct(kLowRate)));
     const double rise_abs = std::fabs(fit.slope * fit.span);
     const double nonlinearity = fit.max_deviation / rise_abs;
-    Support linear = Support::kUnclear;
-    if (fit.lack_of_fit_p >= kLackOfFitAlpha) linear = Support::kYes;
+    // why: no interval here; the margin is the better of the two ways to say yes, each as a
+    // distance from its own limit (p-value above alpha, nonlinearity below its bound)
+    Test linear{Support::kUnclear,
+                std::fmax(fit.lack_of_fit_p - kLackOfFitAlpha, kMaxNonlinearity - nonlinearity)};
+    if (std::isnan(fit.lack_of_fit_p)) linear.margin = NAN;
+    if (fit.lack_of_fit_p >= kLackOfFitAlpha) linear.support = Support::kYes;
     if (fit.lack_of_fit_p < kLackOfFitAlpha) {
-      linear = nonlinearity <= kMaxNonlinearity ? Support::kYes : Support::kNo;
+      linear.support = nonlinearity <= kMaxNonlinearity ? Support::kYes : Support::kNo;
     }
     parts.push_back(
         part(linear, "about linearly: lack-of-fit p = " + format("%.3g", fit.lack_of_fit_p) +
@@ -612,9 +694,9 @@ Decision claim9(const Sets& sets) {
   // "mainly": the relative drop of the success rate exceeds the relative rise of the overhead
   const Interval drop = scaled(rate_difference(lo.rate, hi.rate), 1.0 / lo.rate.p());
   const Interval rise = relative_difference(hi.overhead, lo.overhead, lo.overhead);
-  Support mainly = Support::kUnclear;
-  if (drop.lo > rise.hi) mainly = Support::kYes;
-  if (drop.hi < rise.lo) mainly = Support::kNo;
+  Test mainly{Support::kUnclear, in_widths(drop.lo - rise.hi, width(drop) + width(rise))};
+  if (drop.lo > rise.hi) mainly.support = Support::kYes;
+  if (drop.hi < rise.lo) mainly.support = Support::kNo;
   parts.push_back(part(mainly, "mainly success: relative success drop " +
                                    pct((lo.rate.p() - hi.rate.p()) / lo.rate.p()) + " " +
                                    pct_interval(drop) + " vs overhead change " +
@@ -772,9 +854,10 @@ Decision claim11(const Sets& sets) {
   for (int a = 0; a < 3; ++a) {
     const Importance specific = importance(*n.sets[2 * a]);
     const Importance lost = importance(*n.sets[2 * a + 1]);
-    Support s = Support::kUnclear;
-    if (lost.bounds.hi < kMuchLess * specific.bounds.lo) s = Support::kYes;
-    if (lost.bounds.lo >= kMuchLess * specific.bounds.hi) s = Support::kNo;
+    Test s{Support::kUnclear, in_widths(kMuchLess * specific.bounds.lo - lost.bounds.hi,
+                                        width(lost.bounds) + kMuchLess * width(specific.bounds))};
+    if (lost.bounds.hi < kMuchLess * specific.bounds.lo) s.support = Support::kYes;
+    if (lost.bounds.lo >= kMuchLess * specific.bounds.hi) s.support = Support::kNo;
     parts.push_back(part(s, std::string(algorithms[a]) + ": " + lost.text + "; importance " +
                                 num(lost.point) + " " + interval(lost.bounds) + " vs " +
                                 specific.text + "; importance " + num(specific.point) + " " +
@@ -834,7 +917,7 @@ std::vector<ClaimResult> evaluate_claims(const std::map<std::string, SetStats>& 
   std::vector<ClaimResult> out;
   for (const ClaimDef& c : kClaims) {
     const Decision d = c.decide(sets);
-    out.push_back({c.id, c.text, d.verdict, d.evidence});
+    out.push_back({c.id, c.text, d.verdict, d.evidence, d.parts, d.margin});
   }
   return out;
 }

@@ -482,5 +482,85 @@ TEST(Claims, Claim11UnclearWithTenRuns) {
   EXPECT_VERDICT(with_runs(paper_like(), 10), 11, Verdict::kUnclear);
 }
 
+// margins (docs/claims.md, "Margins")
+
+// Every part's margin agrees in sign with its support; a claim's margin is its weakest part's.
+void expect_consistent_margins(const std::map<std::string, SetStats>& sets) {
+  for (const ClaimResult& c : evaluate_claims(sets)) {
+    ASSERT_FALSE(c.parts.empty()) << "claim " << c.id;
+    double weakest = INFINITY;
+    for (const ClaimPart& p : c.parts) {
+      if (p.support == Verdict::kHolds) {
+        EXPECT_GE(p.margin, 0.0) << "claim " << c.id << ": " << p.text;
+      } else if (!std::isnan(p.margin)) {
+        EXPECT_LT(p.margin, 0.0) << "claim " << c.id << ": " << p.text;
+      }
+      EXPECT_NE(c.evidence.find(p.text), std::string::npos) << "claim " << c.id;
+      weakest = std::isnan(p.margin) || std::isnan(weakest) ? NAN : std::fmin(weakest, p.margin);
+    }
+    if (std::isnan(weakest)) {
+      EXPECT_TRUE(std::isnan(c.margin)) << "claim " << c.id;
+    } else {
+      EXPECT_DOUBLE_EQ(c.margin, weakest) << "claim " << c.id;
+    }
+    if (c.verdict == Verdict::kHolds) {
+      EXPECT_GE(c.margin, 0.0) << "claim " << c.id;
+    }
+  }
+}
+
+TEST(ClaimMargins, AgreeInSignWithEveryPartsVerdict) {
+  expect_consistent_margins(paper_like());
+  expect_consistent_margins(with_runs(paper_like(), 10));
+  auto flat = paper_like();
+  set_profile(flat["D"], std::vector<int>(9, 50), std::vector<double>(9, 1.35));
+  set_profile(flat["G"], std::vector<int>(9, 30), std::vector<double>(9, 1.4));
+  set_profile(flat["A"], std::vector<int>(9, 45), std::vector<double>(9, 1.5));
+  expect_consistent_margins(flat);
+}
+
+TEST(ClaimMargins, AreNotANumberWhenASetIsMissing) {
+  auto sets = paper_like();
+  sets.erase("D");
+  const ClaimResult c = claim(sets, 5);
+  EXPECT_TRUE(c.parts.empty());
+  EXPECT_TRUE(std::isnan(c.margin));
+}
+
+// The margin rises monotonically with the size of the claimed effect, and crosses zero where the
+// verdict turns to "holds".
+TEST(ClaimMargins, GrowWithTheEffect) {
+  // claim 5: the overhead's rise along d_gap, scaled from none to twice the paper-like one
+  double previous = -INFINITY;
+  bool held_before = false;
+  for (double k : {0.0, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0}) {
+    auto sets = paper_like();
+    std::vector<double> means;
+    for (int i = 0; i < 9; ++i) means.push_back(1.35 + k * 0.1 * (i - 3));
+    set_profile(sets["D"], std::vector<int>(9, 50), means);
+    const ClaimResult c = claim(sets, 5);
+    EXPECT_GT(c.margin, previous) << "k = " << k;
+    EXPECT_EQ(c.verdict == Verdict::kHolds, c.margin > 0.0) << "k = " << k;
+    if (held_before) {
+      EXPECT_EQ(c.verdict, Verdict::kHolds) << "k = " << k;
+    }
+    held_before = c.verdict == Verdict::kHolds;
+    previous = c.margin;
+  }
+  EXPECT_TRUE(held_before);
+  // claim 1: the pooled surge-spiral success rate from 80% to 100%
+  previous = -INFINITY;
+  for (int k : {40, 44, 46, 48, 49, 50}) {
+    auto sets = paper_like();
+    for (const char* n : {"D", "E", "F"}) {
+      for (PointStats& p : sets[n].points) p = make_point(50, k, 1.35, 0.1);
+    }
+    const ClaimResult c = claim(sets, 1);
+    EXPECT_GT(c.margin, previous) << k << "/50";
+    previous = c.margin;
+  }
+  EXPECT_GT(previous, 0.0);
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -184,6 +184,8 @@ std::vector<Field> scenario_fields(Scenario& s) {
       {"source.z", "source centre z (m)", any(s.source.center.z)},
       {"source.radius", "source radius, filaments are released within it (m)",
        positive(s.source.radius)},
+      {"source.solid_radius", "radius of a solid source cylinder the robot stops at (m, 0: none)",
+       NumberField{&s.source.solid_radius, 0.0, 1.0}},
       {"wind.model", "wind field", choice(s.wind.model, {"constant"})},
       {"wind.vx", "constant wind velocity, x component (m/s)", any(s.wind.velocity.x)},
       {"wind.vy", "constant wind velocity, y component (m/s)", any(s.wind.velocity.y)},
@@ -211,6 +213,10 @@ std::vector<Field> scenario_fields(Scenario& s) {
       {"odor.height", "odor and wind sensor height (m)", any(s.odor.height)},
       {"wind_sensor.sigma_a", "noise std on each wind component (m/s)",
        non_negative(s.wind_sensor.sigma_a)},
+      {"wind_sensor.sigma_a_scale", "factor on sigma_a: the noise std is sigma_a * sigma_a_scale",
+       NumberField{&s.wind_sensor.sigma_a_scale, 0.0, 100.0}},
+      {"wind_sensor.samples", "noisy samples averaged into one wind measurement",
+       IntegerField{&s.wind_sensor.samples, 1, 1000}},
       {"robot.radius", "body radius (m)", positive(s.robot.radius)},
       {"robot.axle", "distance between the wheels (m)", positive(s.robot.axle)},
       {"robot.wheel_speed", "wheel-speed limit = straight-line speed (m/s)",
@@ -219,17 +225,22 @@ std::vector<Field> scenario_fields(Scenario& s) {
       {"robot.start_y", "start position y (m)", any(s.robot.start.y)},
       {"robot.start_heading_deg", "start heading (deg, counter-clockwise from +x)",
        NumberField{&s.robot.start.heading, -kPi - 1e-12, kPi + 1e-12, false, false, deg}},
-      {"supervisor.success_radius", "success once this close to the source centre (m)",
-       positive(s.supervisor.success_radius)},
+      {"supervisor.success_radius",
+       "success once this close to the source centre (m; 0 only with a solid source)",
+       non_negative(s.supervisor.success_radius)},
       {"supervisor.timeout", "run time limit after release (s)", positive(s.supervisor.timeout)},
       {"controller.algorithm", "algorithm driving the robot", algorithm_choice(c.algorithm)},
       {"casting.beta_deg", "upwind leg angle to the measured upwind direction (deg)",
        NumberField{&c.casting.beta, 0.0, 90.0 * deg, false, true, deg}},
       {"casting.d_lost", "path length without odor before the plume is lost (m)",
        positive(c.casting.d_lost)},
+      {"casting.reacquire_side", "upwind side after a crosswind leg finds odor",
+       choice(c.casting.reacquire_side, {"alternate", "same"})},
       {"surge_spiral.d_gap", "gap between spiral turns (m)", positive(c.surge_spiral.d_gap)},
       {"surge_spiral.d_lost", "path length without odor before the plume is lost (m)",
        positive(c.surge_spiral.d_lost)},
+      {"surge_spiral.start_radius", "radius on the spiral r = b theta where spiralling starts (m)",
+       NumberField{&c.surge_spiral.start_radius, 0.0, 5.0}},
       {"surge_cast.d_cast", "length of the first cast (m)", positive(c.surge_cast.d_cast)},
       {"surge_cast.d_lost", "path length without odor before the plume is lost (m)",
        positive(c.surge_cast.d_lost)},
@@ -287,8 +298,18 @@ void validate(const Scenario& scenario) {
   if (src.x < a.x_min || src.x > a.x_max || src.y < a.y_min || src.y > a.y_max) {
     throw ConfigError("source.x, source.y: the source must lie inside the arena");
   }
+  const double solid = scenario.source.solid_radius;
+  if (!(scenario.supervisor.success_radius > 0.0) && !(solid > 0.0)) {
+    throw ConfigError(
+        "supervisor.success_radius: must be a number > 0 (0 only with source.solid_radius > 0)");
+  }
   const auto& start = scenario.robot.start;
   const double r = scenario.robot.radius;
+  if (solid > 0.0 && std::hypot(start.x - src.x, start.y - src.y) <= solid + r) {
+    throw ConfigError(
+        "robot.start_x, robot.start_y: the robot must start clear of the solid source "
+        "(source.solid_radius)");
+  }
   if (start.x - r < a.x_min || start.x + r > a.x_max) {
     throw ConfigError("robot.start_x: the robot must start inside the arena, clear of the walls");
   }

@@ -67,6 +67,7 @@ std::string plume_key(const Scenario& scenario) {
   Scenario p;
   p.sim = scenario.sim;
   p.source = scenario.source;
+  p.source.solid_radius = 0.0;  // an obstacle for the robot only
   p.wind = scenario.wind;
   p.plume = scenario.plume;
   p.arena.x_max = scenario.arena.x_max;

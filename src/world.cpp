@@ -26,6 +26,8 @@ Outcome supervise(const Scenario& scenario, const RobotState& robot, double t) {
   const double dx = p.x - src.x, dy = p.y - src.y;
   const double rs = scenario.supervisor.success_radius;
   if (dx * dx + dy * dy <= rs * rs) return Outcome::kSuccess;
+  // touching a solid source is finding it
+  if (robot.touching) return Outcome::kSuccess;
   const auto& a = scenario.arena;
   const double r = scenario.robot.radius;
   if (p.x - a.x_min < r || a.x_max - p.x < r || p.y - a.y_min < r || a.y_max - p.y < r) {
@@ -78,7 +80,9 @@ void Agent::act(Command command) {
     return;
   }
   // move
-  step_robot(scenario_.robot, command, scenario_.sim.dt, robot_);
+  const auto& src = scenario_.source;
+  step_robot(scenario_.robot, command, scenario_.sim.dt, robot_,
+             {{src.center.x, src.center.y}, src.solid_radius});
   // check
   outcome_ = supervise(scenario_, robot_, time());
 }

@@ -245,6 +245,48 @@ TEST(Casting, SamplesWindOnlyAtReleaseLossAndReacquisition) {
   EXPECT_EQ(world.wind_calls(), 1 + static_cast<int>(sw.size()));
 }
 
+// Odor in the first 3.2 s and again from 12 s to 16 s: one loss, one reacquisition, a second
+// loss. The headings held at the end of the four legs (upwind, crosswind, upwind, crosswind).
+std::vector<double> reacquire_legs(ReacquireSide reacquire, std::uint64_t seed) {
+  CastingParams params;
+  params.reacquire_side = reacquire;
+  Casting casting(params, Rng(seed));
+  ScriptedWorld world([](double, double, double t) { return t < 3.2 || (t >= 12.0 && t < 16.0); });
+  const auto log = world.run(casting, 900);
+  const auto sw = switches(log, "upwind");
+  EXPECT_EQ(sw.size(), 3u);
+  if (sw.size() != 3u) return {};
+  std::vector<double> headings;
+  for (std::size_t end : {sw[0] - 1, sw[1] - 1, sw[2] - 1, log.size() - 1}) {
+    headings.push_back(log[end].robot.pose.heading);
+  }
+  return headings;
+}
+
+TEST(Casting, ReacquireSideChoosesTheUpwindLegAfterReacquisition) {
+  const double beta = CastingParams{}.beta;
+  std::set<int> sides;
+  for (std::uint64_t seed : {1, 2, 3, 4, 5, 6}) {
+    for (ReacquireSide reacquire : {ReacquireSide::kAlternate, ReacquireSide::kSame}) {
+      const std::vector<double> legs = reacquire_legs(reacquire, seed);
+      ASSERT_EQ(legs.size(), 4u);
+      // the side at release, from the first upwind leg (noise-free: upwind + s beta exactly)
+      const int s = same_angle(legs[0], kUpwind + beta) ? 1 : -1;
+      ASSERT_TRUE(same_angle(legs[0], kUpwind + s * beta));
+      sides.insert(s);
+      // the crosswind leg after UPWIND(s) goes toward -s either way
+      EXPECT_TRUE(same_angle(legs[1], kUpwind - s * kPi / 2.0));
+      // reacquired: alternate zigzags to UPWIND(-s), same keeps UPWIND(s)
+      const int after = reacquire == ReacquireSide::kAlternate ? -s : s;
+      EXPECT_TRUE(same_angle(legs[2], kUpwind + after * beta))
+          << "seed " << seed << " heading " << legs[2];
+      // the next crosswind leg goes toward minus the side held
+      EXPECT_TRUE(same_angle(legs[3], kUpwind - after * kPi / 2.0)) << "seed " << seed;
+    }
+  }
+  EXPECT_EQ(sides, (std::set<int>{-1, 1}));
+}
+
 TEST(Casting, OdorFreeWorldLosesAfterDLostThenGoesCrosswindForever) {
   const CastingParams params;
   for (std::uint64_t seed : {1, 2, 3}) {
@@ -385,6 +427,67 @@ TEST(SurgeSpiral, SpiralGapMatchesDGapAfterTheFirstTurn) {
     for (std::size_t k = 1; k < back.size(); ++k) {
       EXPECT_NEAR(back[k] - back[k - 1], d_gap, 0.1 * d_gap) << "d_gap " << d_gap << " turn " << k;
     }
+  }
+}
+
+// Radius (m) of the circle through three points.
+double circumradius(const Pose& a, const Pose& b, const Pose& c) {
+  const double ab = std::hypot(b.x - a.x, b.y - a.y), bc = std::hypot(c.x - b.x, c.y - b.y);
+  const double ca = std::hypot(a.x - c.x, a.y - c.y);
+  const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  return ab * bc * ca / (2.0 * std::fabs(cross));
+}
+
+TEST(SurgeSpiral, StartRadiusStartsWithTheSpiralsCurvatureThere) {
+  const SurgeSpiralParams defaults;
+  const double b = defaults.d_gap / (2.0 * kPi);
+  for (double r0 : {0.0, 0.02, 0.1, 0.5, 2.0}) {
+    SurgeSpiralParams params;
+    params.start_radius = r0;
+    SurgeSpiral spiral(params, Rng(3));
+    ScriptedWorld world(never);
+    const auto log = world.run(spiral, 400);
+    const auto sw = switches(log, "surge");
+    ASSERT_EQ(sw.size(), 1u);
+    // noise-free: the robot already faces upwind, so the first spiral step curves
+    const std::size_t i = sw[0];
+    ASSERT_EQ(log[i].command.motion, Motion::kCurve);
+    const double theta0 = r0 / b;
+    const double t2 = theta0 * theta0;
+    const double radius = b * std::pow(t2 + 1.0, 1.5) / (t2 + 2.0);
+    // the first step's arc: path length over heading change
+    const RobotState& before = log[i - 1].robot;
+    const RobotState& after = log[i].robot;
+    const double turn = std::fabs(wrap_angle(after.pose.heading - before.pose.heading));
+    EXPECT_NEAR((after.odometer - before.odometer) / turn, radius, 1e-9 * radius) << "r0 " << r0;
+    // the circle through three poses of the first two steps: between the spiral's radius of
+    // curvature at theta0 and the one a step's path length further on
+    const double ds = after.odometer - before.odometer;
+    const double theta1 = spiral_angle_at(b, spiral_arc_length(b, theta0) + ds, theta0);
+    const double next_radius = 1.0 / spiral_curvature(b, theta1);
+    const double fitted = circumradius(before.pose, after.pose, log[i + 1].robot.pose);
+    EXPECT_GT(fitted, radius * (1.0 - 1e-9)) << "r0 " << r0;
+    EXPECT_LT(fitted, next_radius * (1.0 + 1e-9)) << "r0 " << r0;
+    EXPECT_LT(next_radius - radius, 0.05 * radius) << "r0 " << r0;  // a tight bracket
+  }
+}
+
+TEST(SurgeSpiral, ZeroStartRadiusFollowsTheSpiralFromItsCentre) {
+  // r0 = 0: the commands of the spiral from its centre, curvature 2 / b first
+  const SurgeSpiralParams params;
+  ASSERT_EQ(params.start_radius, 0.0);
+  const double b = params.d_gap / (2.0 * kPi);
+  SurgeSpiral spiral(params, Rng(3));
+  ScriptedWorld world(never);
+  const auto log = world.run(spiral, 1500);
+  const auto sw = switches(log, "surge");
+  ASSERT_EQ(sw.size(), 1u);
+  const std::size_t start = sw[0];
+  EXPECT_EQ(std::fabs(log[start].command.curvature), 2.0 / b);
+  double theta = 0.0;
+  for (std::size_t i = start; i < log.size(); ++i) {
+    theta = spiral_angle_at(b, log[i].obs.odometer - log[start].obs.odometer, theta);
+    EXPECT_EQ(log[i].command.curvature, spiral.curl() * spiral_curvature(b, theta)) << i;
   }
 }
 

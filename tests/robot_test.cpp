@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "plumetrace/geometry.hpp"
@@ -161,6 +162,106 @@ TEST(Robot, ZeroCurvatureDrivesStraightAtFullSpeed) {
   EXPECT_NEAR(state.pose.y, 1.0 + d * std::sin(0.25), 1e-12);
   EXPECT_NEAR(state.odometer, d, 1e-12);
   EXPECT_EQ(state.pose.heading, 0.25);
+}
+
+// solid obstacles
+
+// the source cylinder of the DISAL wind-tunnel world: 5 cm radius at (1, 0)
+const Obstacle kSolid{{1.0, 0.0}, 0.05};
+
+double to_obstacle(const RobotState& state) {
+  return std::hypot(state.pose.x - kSolid.center.x, state.pose.y - kSolid.center.y);
+}
+
+// Steps `command` until the robot touches kSolid or `steps` run out; returns the steps taken.
+int drive_into(const RobotParams& params, const Command& command, RobotState& state, int steps) {
+  for (int k = 1; k <= steps; ++k) {
+    step_robot(params, command, kDt, state, kSolid);
+    if (state.touching) return k;
+  }
+  return steps;
+}
+
+TEST(Robot, StopsAtContactDrivingStraightAtASolidObstacle) {
+  const RobotParams params;
+  const double contact = kSolid.radius + params.radius;
+  for (const double y : {0.0, 0.03, -0.1, 0.114}) {
+    RobotState state{{2.0, y, kPi}, 0.0};
+    const int k = drive_into(params, Command::go(kPi), state, 1000);
+    ASSERT_TRUE(state.touching) << y;
+    EXPECT_NEAR(to_obstacle(state), contact, 1e-9) << y;
+    // on the straight line, at the nearer root of the contact circle
+    const double x = kSolid.center.x + std::sqrt(contact * contact - y * y);
+    EXPECT_NEAR(state.pose.x, x, 1e-9) << y;
+    EXPECT_NEAR(state.pose.y, y, 1e-12);
+    EXPECT_NEAR(state.odometer, 2.0 - x, 1e-12) << y;
+    // the step before, the robot had driven at full speed
+    EXPECT_GT(state.odometer, (k - 1) * kSpeed * kDt - 1e-12);
+    // pushing on moves it no further; backing away is free
+    const RobotState held = state;
+    for (int n = 0; n < 10; ++n) step_robot(params, Command::go(kPi), kDt, state, kSolid);
+    EXPECT_NEAR(state.pose.x, held.pose.x, 1e-12);
+    EXPECT_TRUE(state.touching);
+    step_robot(params, Command::curve(0.0), kDt, state, kSolid);  // facing the obstacle still
+    EXPECT_NEAR(state.pose.x, held.pose.x, 1e-12);
+    state.pose.heading = 0.0;
+    step_robot(params, Command::curve(0.0), kDt, state, kSolid);
+    EXPECT_FALSE(state.touching);
+    EXPECT_NEAR(state.pose.x, held.pose.x + kSpeed * kDt, 1e-12);
+  }
+}
+
+TEST(Robot, StopsAtContactOnAnArcThroughASolidObstacle) {
+  const RobotParams params;
+  const double contact = kSolid.radius + params.radius;
+  // arcs of radius 0.5 m whose circle runs through the obstacle's centre, either way round
+  for (const double k : {2.0, -2.0}) {
+    const Pose start = k > 0.0 ? Pose{2.0, 0.0, kPi / 2.0} : Pose{0.0, 0.0, kPi / 2.0};
+    const Vec2 arc_centre{k > 0.0 ? 1.5 : 0.5, 0.0};
+    RobotState state{start, 0.0};
+    drive_into(params, Command::curve(k), state, 1000);
+    ASSERT_TRUE(state.touching) << k;
+    EXPECT_NEAR(to_obstacle(state), contact, 1e-9) << k;
+    // still on the arc, short of the obstacle's centre: the arc angle is the path over 0.5 m
+    EXPECT_NEAR(std::hypot(state.pose.x - arc_centre.x, state.pose.y - arc_centre.y), 0.5, 1e-12);
+    const double angle_to_centre = kPi - 2.0 * std::asin(contact / 2.0 / 0.5);
+    EXPECT_NEAR(state.odometer, 0.5 * angle_to_centre, 1e-9) << k;
+  }
+}
+
+TEST(Robot, PassesASolidObstacleAtALargerOffset) {
+  const RobotParams params;
+  const double contact = kSolid.radius + params.radius;
+  // straight, just outside the contact distance
+  RobotState state{{2.0, contact + 1e-3, kPi}, 0.0};
+  for (int n = 0; n < 700; ++n) {
+    step_robot(params, Command::go(kPi), kDt, state, kSolid);
+    ASSERT_FALSE(state.touching);
+  }
+  EXPECT_NEAR(state.pose.x, 2.0 - 700 * kSpeed * kDt, 1e-9);
+  // a full circle that keeps 5 mm clear of the contact distance
+  const double rho = 0.5 - contact - 0.005;
+  RobotState loop{{1.5 + rho, 0.0, kPi / 2.0}, 0.0};
+  double nearest = INFINITY;
+  for (int n = 0; n < 1500; ++n) {
+    step_robot(params, Command::curve(1.0 / rho), kDt, loop, kSolid);
+    ASSERT_FALSE(loop.touching);
+    nearest = std::min(nearest, to_obstacle(loop));
+  }
+  EXPECT_GT(loop.odometer, 2.0 * kPi * rho);
+  EXPECT_NEAR(nearest, contact + 0.005, 1e-3);
+}
+
+TEST(Robot, NoObstacleByDefault) {
+  const RobotParams params;
+  RobotState with{{1.1, 0.0, kPi}, 0.0}, without{{1.1, 0.0, kPi}, 0.0};
+  for (int n = 0; n < 200; ++n) {
+    step_robot(params, Command::go(kPi), kDt, with, Obstacle{{1.0, 0.0}, 0.0});
+    step_robot(params, Command::go(kPi), kDt, without);
+  }
+  EXPECT_EQ(with.pose.x, without.pose.x);
+  EXPECT_FALSE(with.touching);
+  EXPECT_LT(with.pose.x, 0.9);  // straight through where a solid obstacle would be
 }
 
 }  // namespace

@@ -59,15 +59,15 @@ TEST(Scenario, PresetInALaterLayerReplacesPlumeRowsOfEarlierLayers) {
   literal.plume = plume_preset(PlumePreset::kPaperLiteral);
   EXPECT_EQ(scenario_to_toml(s), scenario_to_toml(literal));
   // a row in the same layer as the preset, or a later one, still wins
-  const Scenario t = load_scenario(kScenarios + "lochmatter2008.toml",
-                                   {parse_override("plume.sigma_p=0.05"),
-                                    parse_override("plume.preset=paper-literal")});
+  const Scenario t = load_scenario(
+      kScenarios + "lochmatter2008.toml",
+      {parse_override("plume.sigma_p=0.05"), parse_override("plume.preset=paper-literal")});
   EXPECT_EQ(t.plume.sigma_p, 0.05);
   EXPECT_EQ(t.plume.kernel, Kernel::kPrinted);
   // non-plume keys of earlier layers are untouched
-  const Scenario u = load_scenario(kScenarios + "lochmatter2008.toml",
-                                   {parse_override("plume.preset=paper-literal"),
-                                    parse_override("casting.beta_deg=30")});
+  const Scenario u = load_scenario(
+      kScenarios + "lochmatter2008.toml",
+      {parse_override("plume.preset=paper-literal"), parse_override("casting.beta_deg=30")});
   EXPECT_DOUBLE_EQ(u.controller.casting.beta, kPi / 6.0);
 }
 
@@ -168,6 +168,11 @@ TEST(Scenario, InvalidValuesNameTheKeyAndTheAllowedRange) {
        "controller.algorithm: must be one of 'casting', 'surge-spiral', 'surge-cast'"},
       {"plume.preset=foo", "plume.preset: must be one of 'lochmatter2008', 'paper-literal'"},
       {"plume.noise_mode=brownian", "plume.noise_mode: must be one of 'velocity'"},
+      {"source.solid_radius=-0.1", "source.solid_radius: must be a number >= 0 and <= 1"},
+      {"wind_sensor.samples=0", "wind_sensor.samples: must be an integer >= 1 and <= 1000"},
+      {"wind_sensor.sigma_a_scale=101", "wind_sensor.sigma_a_scale: must be a number >= 0"},
+      {"surge_spiral.start_radius=6", "surge_spiral.start_radius: must be a number >= 0 and <= 5"},
+      {"casting.reacquire_side=left", "casting.reacquire_side: must be one of 'alternate', 'same'"},
   };
   for (const auto& c : cases) {
     const std::string msg = error_of_override(c.set);
@@ -179,6 +184,31 @@ TEST(Scenario, RelationsBetweenKeysAreChecked) {
   EXPECT_NE(error_of_override("arena.x_max=-1").find("arena.x_max"), std::string::npos);
   EXPECT_NE(error_of_override("robot.start_y=1.99").find("robot.start_y"), std::string::npos);
   EXPECT_NE(error_of_override("source.x=20").find("source.x"), std::string::npos);
+}
+
+TEST(Scenario, ZeroSuccessRadiusNeedsASolidSource) {
+  const std::string msg = error_of_override("supervisor.success_radius=0");
+  EXPECT_NE(msg.find("source.solid_radius"), std::string::npos) << msg;
+  const Scenario s = build_scenario(
+      {parse_override("source.solid_radius=0.05"), parse_override("supervisor.success_radius=0")});
+  EXPECT_EQ(s.supervisor.success_radius, 0.0);
+  EXPECT_EQ(s.source.solid_radius, 0.05);
+  // the robot must start clear of the solid source
+  const std::string inside = config_error([] {
+    build_scenario(
+        {parse_override("source.solid_radius=0.05"), parse_override("robot.start_x=1.1")});
+  });
+  EXPECT_NE(inside.find("source.solid_radius"), std::string::npos) << inside;
+}
+
+TEST(Scenario, NewUnknownsDefaultToTheModelBeforeThem) {
+  const Scenario s;
+  EXPECT_EQ(s.source.solid_radius, 0.0);
+  EXPECT_EQ(s.wind_sensor.samples, 1);
+  EXPECT_EQ(s.wind_sensor.sigma_a_scale, 1.0);
+  EXPECT_EQ(s.controller.surge_spiral.start_radius, 0.0);
+  EXPECT_EQ(s.controller.casting.reacquire_side, ReacquireSide::kAlternate);
+  EXPECT_EQ(format_value(get_field(s, "casting.reacquire_side")), "'alternate'");
 }
 
 TEST(Scenario, OverrideWithoutEqualsSignIsRejected) {

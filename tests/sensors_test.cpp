@@ -63,6 +63,94 @@ TEST(WindSensor, NoiseHasTrueMeanAndSigmaPerComponent) {
   EXPECT_NEAR(syz / n, 0.0, cov_bound);
 }
 
+// World-frame moments of many measurements at a fixed pose under the given parameters.
+struct WorldMoments {
+  Moments x, y, z;
+  double n = 0.0;
+};
+
+WorldMoments measure_many(const WindSensorParams& params, int n, std::uint64_t seed) {
+  const ConstantWind wind({1.0, 0.0, 0.0});
+  const Pose pose{4.0, 0.3, 0.7};
+  Rng rng(seed);
+  WorldMoments m;
+  m.n = n;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 body = sense_wind_body(params, wind, pose, 0.0, i * kDt, rng);
+    const Vec2 world = rotate({body.x, body.y}, pose.heading);
+    m.x.add(world.x);
+    m.y.add(world.y);
+    m.z.add(body.z);
+  }
+  return m;
+}
+
+TEST(WindSensor, MeanOfNSamplesHasSigmaOverSqrtN) {
+  for (int samples : {4, 9}) {
+    WindSensorParams params;
+    params.samples = samples;
+    const WorldMoments m = measure_many(params, 100000, 777);
+    const double stddev = 0.1 / std::sqrt(static_cast<double>(samples));
+    expect_normal(m.x, m.n, 1.0, stddev);
+    expect_normal(m.y, m.n, 0.0, stddev);
+    expect_normal(m.z, m.n, 0.0, stddev);
+  }
+}
+
+TEST(WindSensor, OneSampleDrawsExactlyAsTheSingleSampleSensor) {
+  // the single-sample sensor: wind plus sigma_a times one normal draw per component
+  const WindSensorParams params;
+  ASSERT_EQ(params.samples, 1);
+  const ConstantWind wind({1.0, 0.0, 0.0});
+  Rng rng(99), reference(99);
+  for (int i = 0; i < 1000; ++i) {
+    const Pose pose{4.0, 0.3, 0.01 * i};
+    const Vec3 body = sense_wind_body(params, wind, pose, 0.0, 0.0, rng);
+    const double nx = reference.normal(), ny = reference.normal(), nz = reference.normal();
+    const Vec2 expected = rotate({1.0 + 0.1 * nx, 0.0 + 0.1 * ny}, -pose.heading);
+    ASSERT_EQ(body.x, expected.x) << i;
+    ASSERT_EQ(body.y, expected.y) << i;
+    ASSERT_EQ(body.z, 0.0 + 0.1 * nz) << i;
+  }
+  EXPECT_EQ(rng.next_u64(), reference.next_u64());
+}
+
+TEST(WindSensor, NSamplesTakeThreeNormalDrawsEach) {
+  WindSensorParams params;
+  params.samples = 5;
+  const ConstantWind wind({1.0, 0.0, 0.0});
+  Rng rng(5), reference(5);
+  sense_wind_body(params, wind, {4.0, 0.0, 0.0}, 0.0, 0.0, rng);
+  for (int i = 0; i < 15; ++i) reference.normal();
+  EXPECT_EQ(rng.next_u64(), reference.next_u64());
+}
+
+TEST(WindSensor, SigmaScaleMultipliesSigmaA) {
+  // sigma_a 0.1 read in units twice as large is the same sensor as sigma_a 0.2
+  WindSensorParams scaled, plain;
+  scaled.sigma_a = 0.1;
+  scaled.sigma_a_scale = 2.0;
+  plain.sigma_a = 0.2;
+  const ConstantWind wind({1.0, 0.0, 0.0});
+  Rng a(31), b(31);
+  for (int i = 0; i < 1000; ++i) {
+    const Pose pose{4.0, 0.3, 0.01 * i};
+    const Vec3 u = sense_wind_body(scaled, wind, pose, 0.0, 0.0, a);
+    const Vec3 v = sense_wind_body(plain, wind, pose, 0.0, 0.0, b);
+    ASSERT_EQ(u.x, v.x) << i;
+    ASSERT_EQ(u.y, v.y) << i;
+    ASSERT_EQ(u.z, v.z) << i;
+  }
+  // and the noise std is sigma_a * sigma_a_scale, also with several samples
+  WindSensorParams params;
+  params.sigma_a_scale = 3.0;
+  params.samples = 4;
+  const WorldMoments m = measure_many(params, 100000, 4242);
+  expect_normal(m.x, m.n, 1.0, 0.3 / 2.0);
+  expect_normal(m.y, m.n, 0.0, 0.3 / 2.0);
+  expect_normal(m.z, m.n, 0.0, 0.3 / 2.0);
+}
+
 TEST(WindSensor, BodyFrameIsWorldWindRotatedByMinusHeading) {
   WindSensorParams params;
   params.sigma_a = 0.0;

@@ -203,6 +203,11 @@ TEST(SharedPlume, ScenariosWithDifferentPlumesAreRefused) {
   b = a;
   b.controller.algorithm = Algorithm::kSurgeCast;
   b.wind_sensor.sigma_a = 0.7;
+  b.wind_sensor.sigma_a_scale = 2.0;
+  b.wind_sensor.samples = 4;
+  b.source.solid_radius = 0.05;  // an obstacle for the robot, not for the filaments
+  b.controller.casting.reacquire_side = ReacquireSide::kSame;
+  b.controller.surge_spiral.start_radius = 0.1;
   EXPECT_EQ(plume_key(a), plume_key(b));  // robot-side keys do not change the plume
   b.plume.sigma_p = 0.2;
   EXPECT_THROW(run_shared({&a, &b}, 1, 0), std::invalid_argument);

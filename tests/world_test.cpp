@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "plumetrace/scenario.hpp"
@@ -166,6 +168,49 @@ TEST(WorldRun, SurgeCastGivesUpWhenNoOdorIsEverPerceived) {
 }
 
 // metrics
+
+// A controller that drives straight along its release heading (odometry heading 0).
+class Straight final : public Controller {
+ public:
+  Command step(const Observation&, WindProbe&) override { return Command::go(0.0); }
+  std::string_view state() const override { return "straight"; }
+  int losses() const override { return 0; }
+};
+
+// a straight run from (x, y) facing upwind toward a solid source of radius 5 cm, success only
+// by touching it
+RunResult straight_at_solid_source(double x, double y, Pose* end) {
+  const Scenario s = build_scenario({parse_override("source.solid_radius=0.05"),
+                                     parse_override("supervisor.success_radius=0"),
+                                     parse_override("robot.start_x=" + std::to_string(x)),
+                                     parse_override("robot.start_y=" + std::to_string(y))});
+  World world(s, kSeed, 0, std::make_unique<Straight>());
+  while (!world.done()) world.step();
+  *end = world.robot().pose;
+  return world.result();
+}
+
+TEST(WorldRun, TouchingASolidSourceIsSuccessAtTheContactDistance) {
+  const Scenario d;
+  const double contact = 0.05 + d.robot.radius;
+  for (const double y : {0.0, 0.05, -0.1}) {
+    Pose end;
+    const RunResult r = straight_at_solid_source(3.0, y, &end);
+    EXPECT_EQ(r.outcome, Outcome::kSuccess) << y;
+    EXPECT_NEAR(std::hypot(end.x - d.source.center.x, end.y - d.source.center.y), contact, 1e-9);
+    EXPECT_NEAR(r.d_t, 3.0 - end.x, 1e-9);
+  }
+}
+
+TEST(WorldRun, PassingASolidSourceWiderThanContactGoesOnToTheWall) {
+  const Scenario d;
+  const double contact = 0.05 + d.robot.radius;
+  Pose end;
+  const RunResult r = straight_at_solid_source(3.0, contact + 0.01, &end);
+  EXPECT_EQ(r.outcome, Outcome::kWall);
+  EXPECT_LT(end.x, d.arena.x_min + d.robot.radius);
+  EXPECT_NEAR(end.y, contact + 0.01, 1e-9);
+}
 
 TEST(RunMetrics, AgreeWithTheRobotsPathAndTheStepCount) {
   for (Algorithm algorithm : all_algorithms()) {

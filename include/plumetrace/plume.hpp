@@ -44,6 +44,9 @@ struct SourceParams {
   Vec3 center{1.0, 0.0, 0.0};
   /// Radius of the source (m); filaments are released within it.
   double radius = 0.12;
+  /// Radius of a solid cylinder at the centre that the robot cannot enter (m); 0: none.
+  /// The plume does not see it.
+  double solid_radius = 0.0;
 };
 
 /// Every row of SPEC section 2's preset table; defaults are the `lochmatter2008` preset.

@@ -18,8 +18,13 @@ struct OdorSensorParams {
 
 /// Wind-direction sensor (paper eqs. 6-7).
 struct WindSensorParams {
-  /// Standard deviation of the noise on each wind component (m/s).
+  /// Standard deviation of the noise on each wind component (m/s), before sigma_a_scale.
   double sigma_a = 0.1;
+  /// Factor on sigma_a: the noise std applied is sigma_a * sigma_a_scale (the unit of the
+  /// printed value).
+  double sigma_a_scale = 1.0;
+  /// Independent noisy samples averaged into one measurement (noise std / sqrt(samples)).
+  int samples = 1;
 };
 
 /// Where the odor sensor of a robot at `pose` samples the plume.
@@ -40,7 +45,8 @@ inline bool perceives_odor(const OdorSensorParams& params, double concentration)
   return concentration >= params.threshold;
 }
 
-/// A noisy wind sample at `pose` and time t, rotated into the robot frame (3-D, m/s).
+/// A noisy wind measurement at `pose` and time t (the mean of params.samples samples), rotated
+/// into the robot frame (3-D, m/s).
 Vec3 sense_wind_body(const WindSensorParams& params, const WindField& wind, const Pose& pose,
                      double height, double t, Rng& rng);
 

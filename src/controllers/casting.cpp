@@ -23,8 +23,8 @@ Command Casting::step(const Observation& obs, WindProbe& wind) {
       break;
     case State::kCrosswind:
       if (obs.odor) {
-        // odor hit: measure wind, go UPWIND(-s)
-        side_ = -side_;
+        // odor hit: measure wind, go UPWIND(-s) (or UPWIND(s) with reacquire_side = same)
+        if (params_.reacquire_side == ReacquireSide::kAlternate) side_ = -side_;
         const double upwind = upwind_heading(wind.measure_wind_body(), obs.odometry.heading);
         heading_ = upwind + side_ * params_.beta;
         state_ = State::kUpwind;

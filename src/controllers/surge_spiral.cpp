@@ -4,6 +4,13 @@
 
 namespace plumetrace {
 
+namespace {
+
+// the spiral's b (m/rad): r = b theta puts successive turns d_gap apart
+double spiral_b(const SurgeSpiralParams& params) { return params.d_gap / (2.0 * kPi); }
+
+}  // namespace
+
 double spiral_arc_length(double b, double theta) {
   return 0.5 * b * (theta * std::sqrt(1.0 + theta * theta) + std::asinh(theta));
 }
@@ -40,7 +47,10 @@ Command SurgeSpiral::step(const Observation& obs, WindProbe& wind) {
         curl_ = guess_plume_side(heading_, upwind, rng_);
         heading_ = upwind;
         aligned_ = false;
-        theta_ = 0.0;
+        // why: the Khepera III toolbox's spiral starts with a finite curvature, i.e. at a radius
+        // r0 on the spiral, not at its centre (docs/model.md)
+        theta_ = params_.start_radius / spiral_b(params_);
+        arc_offset_ = spiral_arc_length(spiral_b(params_), theta_);
         state_ = State::kSpiral;
       }
       break;
@@ -60,9 +70,10 @@ Command SurgeSpiral::step(const Observation& obs, WindProbe& wind) {
     aligned_ = true;
     spiral_start_ = obs.odometer;
   }
-  // why: follow r = b theta by its curvature at the path length covered so far (b = d_gap / 2 pi)
-  const double b = params_.d_gap / (2.0 * kPi);
-  theta_ = spiral_angle_at(b, obs.odometer - spiral_start_, theta_);
+  // why: follow r = b theta by its curvature at the path length covered so far, counted from
+  // the spiral's centre (b = d_gap / 2 pi)
+  const double b = spiral_b(params_);
+  theta_ = spiral_angle_at(b, arc_offset_ + (obs.odometer - spiral_start_), theta_);
   return Command::curve(curl_ * spiral_curvature(b, theta_));
 }
 

@@ -4,12 +4,20 @@
 
 namespace plumetrace {
 
+/// Which side the upwind leg takes after a crosswind leg finds the plume again.
+enum class ReacquireSide {
+  kAlternate,  ///< UPWIND(-s): the zigzag of the paper's state machine
+  kSame,       ///< UPWIND(s): the side held before the loss
+};
+
 /// Parameters of casting (paper section 2.1).
 struct CastingParams {
   /// Angle of the upwind legs to the measured upwind direction (rad).
   double beta = deg_to_rad(25.0);
   /// Path length without odor after which the plume is lost (m).
   double d_lost = 0.614;
+  /// Side of the upwind leg after reacquisition; the next crosswind leg still goes toward -s.
+  ReacquireSide reacquire_side = ReacquireSide::kAlternate;
 };
 
 /// Casting: upwind at +-beta while in the plume, crosswind back into it once lost; zigzags.

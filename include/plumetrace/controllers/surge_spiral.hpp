@@ -10,6 +10,9 @@ struct SurgeSpiralParams {
   double d_gap = 0.222;
   /// Path length without odor after which the plume is lost (m).
   double d_lost = 0.614;
+  /// Radius (m) on the spiral r = b theta at which the robot starts: it follows the curvature
+  /// profile from theta0 = start_radius / b on (0: from the centre).
+  double start_radius = 0.0;
 };
 
 /// Path length (m) of the Archimedean spiral r = b theta from its centre to angle theta (rad).
@@ -43,8 +46,9 @@ class SurgeSpiral final : public Controller {
   bool started_ = false;
   double heading_ = 0.0;  // surge heading, or the spiral's start heading
   int curl_ = 1;
-  bool aligned_ = false;  // spiral: turned to its start heading
-  double spiral_start_ = 0.0;
+  bool aligned_ = false;       // spiral: turned to its start heading
+  double spiral_start_ = 0.0;  // odometer where the spiral starts (m)
+  double arc_offset_ = 0.0;    // spiral path length from the centre to theta0 (m)
   double theta_ = 0.0;
   int losses_ = 0;
   LossTracker tracker_;

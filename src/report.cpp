@@ -175,9 +175,15 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
     const double sx = algorithms[a]["source_x"], sy = algorithms[a]["source_y"];
     int upwind = 0, upwind_wall = 0, near = 0, passed = 0, close = 0;
     std::vector<double> closest, end_distance;
+    json ends = json::array();
     for (std::size_t i = 0; i < jobs.size(); ++i) {
       if (jobs[i].algorithm != a) continue;
       const FailedRun& f = done[i];
+      ends.push_back({{"trial", jobs[i].run.trial},
+                      {"outcome", std::string(outcome_name(f.outcome))},
+                      {"x", f.end_x},
+                      {"y", f.end_y},
+                      {"closest_m", f.closest}});
       const double d = std::hypot(f.end_x - sx, f.end_y - sy);
       upwind += f.end_x < sx;
       upwind_wall += f.end_x < sx && f.outcome == Outcome::kWall;
@@ -195,6 +201,7 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
     j["came_within_0_5m"] = close;
     j["closest_median_m"] = number_or_null(median(closest));
     j["end_distance_median_m"] = number_or_null(median(end_distance));
+    j["ends"] = ends;
   }
   return {{"examined_max", kFailuresExamined}, {"algorithms", algorithms}};
 }

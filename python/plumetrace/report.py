@@ -483,8 +483,11 @@ PAPER_QUOTES = {
         "are much more important.",
 }
 
-# The repository's root (this file is python/plumetrace/report.py): the report links its docs.
-REPO_ROOT = Path(__file__).resolve().parents[2]
+# The repository's root, whose docs the report links: this file is python/plumetrace/report.py
+# there, or a copy in BUILD/python/plumetrace/ of a build folder inside it.
+REPO_ROOT = next((p for p in Path(__file__).resolve().parents[1:4]
+                  if (p / "docs").is_dir() and (p / "experiments").is_dir()),
+                 Path(__file__).resolve().parents[2])
 
 OUTCOME_COLORS = {"success": "#4c9a4c", "wall": "#d9534f", "timeout": "#f0ad4e",
                   "gave_up": "#8c6bb1"}
@@ -1464,10 +1467,11 @@ def _reproducibility_section(summary: dict, out_dir: Path) -> Section:
 
 
 def _doc_link(out_dir: Path, rel: str) -> tuple:
-    """A link to one of the repository's documents, relative to the report's folder."""
+    """A link to one of the repository's documents, relative to the report's folder (the
+    repository-relative path when this module does not run from a checkout)."""
     target = REPO_ROOT / rel
     href = rel
-    if target.exists():
+    if (REPO_ROOT / "docs").is_dir():
         try:
             href = os.path.relpath(target, Path(out_dir).resolve()).replace(os.sep, "/")
         except ValueError:  # another drive (Windows)

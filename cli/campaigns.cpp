@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "plumetrace/campaign.hpp"
@@ -78,21 +79,43 @@ std::string experiments_dir(const std::string& given) {
   return given.empty() ? std::string(kSourceDir) + "/experiments/lochmatter2008" : given;
 }
 
-std::vector<SweepDef> read_sets(const std::string& dir, bool with_sensitivity) {
+std::vector<SweepDef> read_sets(const std::string& dir) {
   std::vector<SweepDef> defs;
   for (const char* name : kSets) defs.push_back(read_sweep_file(dir + "/" + name + ".toml"));
-  if (with_sensitivity) {
-    defs.push_back(read_sweep_file(dir + "/radius.toml"));
-    defs.push_back(read_sweep_file(dir + "/literal.toml"));
-  }
   return defs;
 }
 
-bool sets_key(const SweepDef& def, const std::string& key) {
-  for (const auto& s : def.settings) {
-    if (s.key == key) return true;
+std::string presets_dir(const std::string& experiments) { return experiments + "/presets"; }
+
+// the readings to run: the main one first, then the extra ones ("none": no extra; empty: every
+// preset file but the main one)
+std::vector<Reading> readings_to_run(const std::string& dir, const ReproduceCommand& cmd) {
+  std::vector<Reading> readings{read_reading(presets_dir(dir), cmd.preset)};
+  std::vector<std::string> extra;
+  if (cmd.presets.empty()) {
+    extra = preset_names(presets_dir(dir));
+  } else if (cmd.presets != "none") {
+    std::stringstream list(cmd.presets);
+    for (std::string name; std::getline(list, name, ',');) {
+      if (!name.empty()) extra.push_back(name);
+    }
   }
-  return false;
+  for (const auto& name : extra) {
+    const bool seen = std::any_of(readings.begin(), readings.end(),
+                                  [&](const Reading& r) { return r.name == name; });
+    if (!seen) readings.push_back(read_reading(presets_dir(dir), name));
+  }
+  return readings;
+}
+
+// the reading without the keys that are axes of `def` (the radius sweep varies the radius that
+// a reading may set)
+Reading without_axes(Reading reading, const SweepDef& def) {
+  std::erase_if(reading.settings, [&](const Setting& s) {
+    return std::any_of(def.axes.begin(), def.axes.end(),
+                       [&](const Axis& a) { return a.key == s.key; });
+  });
+  return reading;
 }
 
 // runs the campaign (or a shard of it) with a progress bar; false when interrupted (after
@@ -150,8 +173,15 @@ void CampaignFlags::add_to(CLI::App& sub) {
 CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
   auto* sub = app.add_subcommand(
       "reproduce", "run the paper's nine experiment sets and write the report (report.html)");
+  std::string names = kDefaultReading;
+  for (const auto& n : preset_names(presets_dir(experiments_dir("")))) names += ", " + n;
   sub->add_option("--preset", cmd.preset,
-                  "plume preset: lochmatter2008 (default) or paper-literal");
+                  "the main reading of what the paper leaves unsaid: " + names +
+                      " (files experiments/lochmatter2008/presets/NAME.toml; default: default, "
+                      "the built-in defaults)");
+  sub->add_option("--presets", cmd.presets,
+                  "the other readings whose nine sets are run too, for the claims columns, "
+                  "comma-separated, or none (default: every preset file)");
   sub->add_option("--runs", cmd.runs, "runs per value (default 50, as the paper)")
       ->check(CLI::PositiveNumber);
   cmd.flags.add_to(*sub);
@@ -160,14 +190,14 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
 
 int run_reproduce_command(const ReproduceCommand& cmd) {
   const std::string dir = experiments_dir(cmd.flags.experiments);
-  std::vector<ExpandedSweep> sweeps;
-  for (const auto& def : read_sets(dir, true)) {
-    // the preset applies to every sweep that does not choose its own (the literal one does)
-    std::vector<Setting> overrides;
-    if (!cmd.preset.empty() && !sets_key(def, "plume.preset")) {
-      overrides.push_back({"plume.preset", cmd.preset, true, "--preset", Layer::kCommandLine});
-    }
-    sweeps.push_back(expand_sweep(def, overrides));
+  const std::vector<Reading> readings = readings_to_run(dir, cmd);
+  const std::vector<SweepDef> sets = read_sets(dir);
+  // the main reading's nine sets and its success-radius sweep, then the other readings' sets
+  std::vector<ExpandedSweep> sweeps = reading_sets(sets, readings.front(), true);
+  const SweepDef radius = read_sweep_file(dir + "/radius.toml");
+  sweeps.push_back(expand_sweep(radius, without_axes(readings.front(), radius).settings));
+  for (std::size_t i = 1; i < readings.size(); ++i) {
+    for (auto& s : reading_sets(sets, readings[i], false)) sweeps.push_back(std::move(s));
   }
   std::filesystem::create_directories(cmd.flags.out);
   Store store(cmd.flags.out + "/results.sqlite", campaign_definition(sweeps), version(),
@@ -180,16 +210,14 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
 
   ReproduceInfo info;
   info.command = cmd.command_line;
-  info.preset = cmd.preset.empty() ? "lochmatter2008" : cmd.preset;
+  info.preset = readings.front().name;
+  info.readings = readings;
   info.runs_override = cmd.runs;
   info.threads = cmd.flags.threads > 0 ? cmd.flags.threads
                                        : static_cast<int>(std::thread::hardware_concurrency());
   info.elapsed = result.elapsed;
-  std::vector<Setting> base;
-  if (!cmd.preset.empty()) {
-    base.push_back({"plume.preset", cmd.preset, true, "--preset", Layer::kCommandLine});
-  }
-  info.base_config = scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, base));
+  info.base_config =
+      scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, readings.front().settings));
   write_exports(cmd.flags.out, sweeps, rows, cmd.runs);
   write_text_file(cmd.flags.out + "/summary.json", build_summary(sweeps, rows, info));
   if (const int rc = draw_report(cmd.flags.out)) return rc;
@@ -213,7 +241,7 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityCommand& cmd) {
 int run_sensitivity_command(const SensitivityCommand& cmd) {
   std::vector<ExpandedSweep> sweeps;
   for (const auto& def :
-       sensitivity_sweeps(read_sets(experiments_dir(cmd.flags.experiments), false), cmd.runs)) {
+       sensitivity_sweeps(read_sets(experiments_dir(cmd.flags.experiments)), cmd.runs)) {
     sweeps.push_back(expand_sweep(def, {}));
   }
   std::filesystem::create_directories(cmd.flags.out);

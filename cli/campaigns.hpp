@@ -68,7 +68,8 @@ struct CampaignFlags {
 
 /// `plumetrace reproduce ...`
 struct ReproduceCommand {
-  std::string preset;
+  std::string preset = "default";
+  std::string presets;
   int runs = 0;
   CampaignFlags flags;
   std::string command_line;

@@ -128,6 +128,38 @@ std::vector<Setting> read_scenario_file(const std::string& path) {
   return settings;
 }
 
+std::vector<std::string> preset_names(const std::string& folder) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) return names;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const auto& path = entry.path();
+    if (entry.is_regular_file(ec) && path.extension() == ".toml") {
+      names.push_back(path.stem().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Reading read_reading(const std::string& folder, const std::string& name) {
+  Reading reading{name, "", {}};
+  if (name == kDefaultReading) return reading;
+  const auto names = preset_names(folder);
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string known = kDefaultReading;
+    for (const auto& n : names) known += ", " + n;
+    throw ConfigError("unknown preset '" + name + "' (presets: " + known + "; files " + folder +
+                      "/NAME.toml)");
+  }
+  reading.file = folder + "/" + name + ".toml";
+  const toml::table table = parse_toml_file(reading.file, "preset file");
+  flatten(table, "", reading.file, Layer::kCommandLine, reading.settings);
+  // every key and value checked now, naming the file, before any run
+  build_scenario(reading.settings);
+  return reading;
+}
+
 Scenario load_scenario(const std::string& path, const std::vector<Setting>& overrides) {
   std::vector<Setting> settings;
   if (!path.empty()) settings = read_scenario_file(path);

@@ -41,6 +41,8 @@ json stats_json(const PointStats& p) {
             {"mean", number_or_null(p.overhead.mean)},
             {"lo", number_or_null(p.overhead.lo)},
             {"hi", number_or_null(p.overhead.hi)},
+            {"boot_lo", number_or_null(p.overhead_bootstrap.lo)},
+            {"boot_hi", number_or_null(p.overhead_bootstrap.hi)},
             {"median", number_or_null(p.overhead_quartiles.median)},
             {"q1", number_or_null(p.overhead_quartiles.q1)},
             {"q3", number_or_null(p.overhead_quartiles.q3)}}},

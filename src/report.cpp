@@ -1,9 +1,12 @@
 #include "plumetrace/report.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
+#include <thread>
 
 #include "json_util.hpp"
 #include "plumetrace/campaign.hpp"
@@ -46,17 +49,24 @@ json point_json(const PointStats& st, const SweepPoint& p) {
   return j;
 }
 
-// a successful run of the set's fixed point, re-run with a trace (Fig. 6)
-json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs) {
+// the first run of the set's fixed point that succeeded (or, with `success` false, failed),
+// re-run with a trace (Fig. 6)
+json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
+                bool success) {
   const SetStats st = set_stats(sweep, rows, runs);
   if (st.fixed_index < 0) return nullptr;
   const SweepPoint& p = sweep.points[static_cast<std::size_t>(st.fixed_index)];
   for (const auto& r : point_runs(rows, sweep.def.name, p.index, runs)) {
-    if (r.outcome != Outcome::kSuccess) continue;
+    if ((r.outcome == Outcome::kSuccess) != success) continue;
     Trace trace;
     const RunResult again =
         run_once(p.scenario, r.seed, r.trial, TraceRecorder(trace, 0.0, p.scenario.sim.dt));
     json x = json::array(), y = json::array(), state = json::array(), odor = json::array();
+    const Vec3& c = p.scenario.source.center;
+    double closest = INFINITY;
+    for (const auto& s : trace.steps) {
+      closest = std::min(closest, std::hypot(s.pose.x - c.x, s.pose.y - c.y));
+    }
     // every other step is plenty for a figure
     for (std::size_t i = 0; i < trace.steps.size(); i += 2) {
       const auto& s = trace.steps[i];
@@ -74,9 +84,126 @@ json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int
             {"state", state},
             {"odor", odor},
             {"outcome", std::string(outcome_name(again.outcome))},
-            {"overhead", number_or_null(again.overhead)}};
+            {"overhead", number_or_null(again.overhead)},
+            {"time_s", again.time},
+            {"closest_m", number_or_null(closest)}};
   }
   return nullptr;
+}
+
+// where a failed run ended and how close it came to the source, from a re-run
+struct FailedRun {
+  Outcome outcome = Outcome::kRunning;
+  double end_x = NAN;         // m
+  double end_y = NAN;         // m
+  double closest = INFINITY;  // smallest distance of the robot centre to the source (m)
+  double min_x = INFINITY;    // most upwind x reached (m)
+};
+
+FailedRun rerun_failed(const Scenario& scenario, const RunResult& r) {
+  FailedRun f;
+  const Vec3& c = scenario.source.center;
+  const RunResult again = run_once(scenario, r.seed, r.trial, [&](const World& world) {
+    const Pose& p = world.robot().pose;
+    f.closest = std::min(f.closest, std::hypot(p.x - c.x, p.y - c.y));
+    f.min_x = std::min(f.min_x, p.x);
+    f.end_x = p.x;
+    f.end_y = p.y;
+  });
+  f.outcome = again.outcome;
+  return f;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// the failed runs of each algorithm at its fixed values (sets A, D, G): counts by outcome over
+// all of them, and where the first kFailuresExamined (by trial) end, re-run on `threads` threads
+json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                   int runs_override, int threads) {
+  struct Job {
+    const Scenario* scenario;
+    RunResult run;
+    std::size_t algorithm;
+  };
+  std::vector<Job> jobs;
+  json algorithms = json::array();
+  for (const char* name : {"A", "D", "G"}) {
+    const ExpandedSweep* sweep = find(sweeps, name);
+    if (!sweep) continue;
+    const int runs = runs_per_point(*sweep, runs_override);
+    const SetStats st = set_stats(*sweep, rows, runs);
+    if (st.fixed_index < 0) continue;
+    const SweepPoint& p = sweep->points[static_cast<std::size_t>(st.fixed_index)];
+    const PointStats& ps = st.points[static_cast<std::size_t>(st.fixed_index)];
+    int examined = 0;
+    for (const auto& r : point_runs(rows, sweep->def.name, p.index, runs)) {
+      if (r.outcome == Outcome::kSuccess || examined >= kFailuresExamined) continue;
+      jobs.push_back({&p.scenario, r, algorithms.size()});
+      ++examined;
+    }
+    const Vec3& c = p.scenario.source.center;
+    algorithms.push_back({{"algorithm", st.algorithm},
+                          {"set", name},
+                          {"runs", ps.runs},
+                          {"failed", ps.runs - ps.successes},
+                          {"walls", ps.walls},
+                          {"timeouts", ps.timeouts},
+                          {"gave_up", ps.gave_up},
+                          {"examined", examined},
+                          {"source_x", c.x},
+                          {"source_y", c.y}});
+  }
+  // the re-runs, in parallel; each result lands in its own slot
+  std::vector<FailedRun> done(jobs.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < jobs.size(); i = next++) {
+      done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+
+  for (std::size_t a = 0; a < algorithms.size(); ++a) {
+    const double sx = algorithms[a]["source_x"], sy = algorithms[a]["source_y"];
+    int upwind = 0, upwind_wall = 0, near = 0, passed = 0, close = 0;
+    std::vector<double> closest, end_distance;
+    json ends = json::array();
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      if (jobs[i].algorithm != a) continue;
+      const FailedRun& f = done[i];
+      ends.push_back({{"trial", jobs[i].run.trial},
+                      {"outcome", std::string(outcome_name(f.outcome))},
+                      {"x", f.end_x},
+                      {"y", f.end_y},
+                      {"closest_m", f.closest}});
+      const double d = std::hypot(f.end_x - sx, f.end_y - sy);
+      upwind += f.end_x < sx;
+      upwind_wall += f.end_x < sx && f.outcome == Outcome::kWall;
+      near += d <= 1.0;
+      passed += f.min_x < sx;
+      close += f.closest <= 0.5;
+      closest.push_back(f.closest);
+      end_distance.push_back(d);
+    }
+    json& j = algorithms[a];
+    j["end_upwind"] = upwind;
+    j["end_upwind_wall"] = upwind_wall;
+    j["end_within_1m"] = near;
+    j["passed_source"] = passed;
+    j["came_within_0_5m"] = close;
+    j["closest_median_m"] = number_or_null(median(closest));
+    j["end_distance_median_m"] = number_or_null(median(end_distance));
+    j["ends"] = ends;
+  }
+  return {{"examined_max", kFailuresExamined}, {"algorithms", algorithms}};
 }
 
 // fraction of instants with odor on a grid over the arena (the background of Fig. 6)
@@ -118,6 +245,90 @@ json sweep_definition_json(const SweepDef& def) {
   return {{"name", def.name}, {"title", def.title}, {"scenario", def.scenario_path},
           {"set", settings},  {"axes", axes},       {"runs", def.runs},
           {"seed", def.seed}};
+}
+
+// a claim as JSON: id, text, verdict, margin and evidence
+json claim_json(const ClaimResult& c) {
+  return {{"id", c.id},
+          {"text", c.text},
+          {"verdict", std::string(verdict_name(c.verdict))},
+          {"margin", number_or_null(c.margin)},
+          {"evidence", c.evidence}};
+}
+
+// one reading: its settings, claims, fixed-value statistics and detection map (maps are shared
+// between readings whose plume and sensor height are the same)
+json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
+                  const std::vector<RunRow>& rows, int runs_override,
+                  std::map<std::string, json>& maps);
+
+}  // namespace
+
+std::string reading_sweep_name(const std::string& reading, bool main, const std::string& set) {
+  return main ? set : reading + "/" + set;
+}
+
+std::vector<ExpandedSweep> reading_sets(const std::vector<SweepDef>& sets, const Reading& reading,
+                                        bool main) {
+  std::vector<ExpandedSweep> out;
+  for (SweepDef def : sets) {
+    def.name = reading_sweep_name(reading.name, main, def.name);
+    out.push_back(expand_sweep(def, reading.settings));
+  }
+  return out;
+}
+
+namespace {
+
+json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
+                  const std::vector<RunRow>& rows, int runs_override,
+                  std::map<std::string, json>& maps) {
+  json settings = json::object();
+  for (const auto& s : reading.settings) settings[s.key] = value_to_json(s.value);
+  std::map<std::string, SetStats> by_name;
+  json fixed = json::array();
+  for (const char* name : kSetNames) {
+    const ExpandedSweep* sweep = find(sweeps, reading_sweep_name(reading.name, main, name));
+    if (!sweep) continue;
+    const SetStats st = set_stats(*sweep, rows, runs_per_point(*sweep, runs_override));
+    by_name[name] = st;
+    const std::string set = name;
+    if ((set == "A" || set == "D" || set == "G") && st.fixed_index >= 0) {
+      const auto i = static_cast<std::size_t>(st.fixed_index);
+      json p = point_json(st.points[i], sweep->points[i]);
+      p["algorithm"] = st.algorithm;
+      p["set"] = set;
+      p["value"] = st.values[i];
+      fixed.push_back(p);
+    }
+  }
+  json claims = json::array();
+  int held = 0, not_held = 0, unclear = 0;
+  for (const auto& c : evaluate_claims(by_name)) {
+    claims.push_back(claim_json(c));
+    held += c.verdict == Verdict::kHolds;
+    not_held += c.verdict == Verdict::kDoesNotHold;
+    unclear += c.verdict == Verdict::kUnclear;
+  }
+  json doc{{"name", reading.name},
+           {"main", main},
+           {"file", reading.file.empty()
+                        ? json(nullptr)
+                        : json(std::filesystem::path(reading.file).filename().string())},
+           {"settings", settings},
+           {"held", held},
+           {"not_held", not_held},
+           {"unclear", unclear},
+           {"claims", claims},
+           {"fixed", fixed}};
+  if (const ExpandedSweep* a = find(sweeps, reading_sweep_name(reading.name, main, "A"))) {
+    const Scenario& sc = a->points.at(0).scenario;
+    const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
+    if (!maps.count(key)) maps[key] = detection_map(sc, a->def.seed);
+    doc["detection_map"] = maps[key];
+    doc["success_radius"] = sc.supervisor.success_radius;
+  }
+  return doc;
 }
 
 }  // namespace
@@ -189,15 +400,10 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   }
   doc["sets"] = sets;
   json claims = json::array();
-  for (const auto& c : evaluate_claims(by_name)) {
-    claims.push_back({{"id", c.id},
-                      {"text", c.text},
-                      {"verdict", std::string(verdict_name(c.verdict))},
-                      {"evidence", c.evidence}});
-  }
+  for (const auto& c : evaluate_claims(by_name)) claims.push_back(claim_json(c));
   doc["claims"] = claims;
 
-  // the three algorithms at their fixed values under other radii and the literal preset
+  // the three algorithms at their fixed values under other success radii
   json variants = json::array(), sens_rows = json::array();
   const auto add_variant = [&](const std::string& v) {
     if (std::find(variants.begin(), variants.end(), json(v)) == variants.end()) {
@@ -215,36 +421,44 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
       sens_rows.push_back(row);
     }
   }
-  if (const ExpandedSweep* literal = find(sweeps, "literal")) {
-    const int runs = runs_per_point(*literal, info.runs_override);
-    add_variant("preset=paper-literal");
-    for (const auto& p : literal->points) {
-      json row = point_json(summarize(point_runs(rows, "literal", p.index, runs)), p);
-      row["algorithm"] = as_text(p.values.at(0));
-      row["variant"] = "preset=paper-literal";
-      sens_rows.push_back(row);
-    }
-  }
   doc["sensitivity"] = {{"variants", variants}, {"rows", sens_rows}};
 
-  // Fig. 6: one successful run per algorithm at the fixed values, over the detection map
+  // Fig. 6: one successful and one failed run per algorithm at the fixed values, over the
+  // detection map
   json trajectories = json::array(), missing = json::array();
   for (const char* name : {"A", "D", "G"}) {
     const ExpandedSweep* sweep = find(sweeps, name);
     if (!sweep) continue;
-    json t = trajectory(*sweep, rows, runs_per_point(*sweep, info.runs_override));
+    const int runs = runs_per_point(*sweep, info.runs_override);
+    json t = trajectory(*sweep, rows, runs, true);
     if (t.is_null()) {
       missing.push_back(
           std::string(algorithm_name(sweep->points[0].scenario.controller.algorithm)));
     } else {
       trajectories.push_back(t);
     }
+    json failed = trajectory(*sweep, rows, runs, false);
+    if (!failed.is_null()) trajectories.push_back(failed);
   }
   doc["trajectories"] = trajectories;
   doc["trajectories_missing"] = missing;
+  doc["failures"] = failures_json(sweeps, rows, info.runs_override, info.threads);
+
+  // each reading's claims, fixed values and detection map; the main one's map is shared
+  std::map<std::string, json> maps;
+  json readings = json::array();
+  for (std::size_t i = 0; i < info.readings.size(); ++i) {
+    readings.push_back(
+        reading_json(info.readings[i], i == 0, sweeps, rows, info.runs_override, maps));
+  }
+  doc["readings"] = readings;
   if (const ExpandedSweep* a = find(sweeps, "A")) {
     const Scenario& s = a->points.at(0).scenario;
-    doc["detection_map"] = detection_map(s, a->def.seed);
+    if (!readings.empty() && readings[0].contains("detection_map")) {
+      doc["detection_map"] = readings[0]["detection_map"];
+    } else {
+      doc["detection_map"] = detection_map(s, a->def.seed);
+    }
     doc["arena"] = {{"x_min", s.arena.x_min},
                     {"x_max", s.arena.x_max},
                     {"y_min", s.arena.y_min},
@@ -254,8 +468,10 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
                      {"radius", s.source.radius},
                      {"success_radius", s.supervisor.success_radius}};
   }
+  // the main reading's sweeps (the other readings' are the same files with their settings)
   json defs = json::array();
   for (const auto& s : sweeps) {
+    if (s.def.name.find('/') != std::string::npos) continue;
     defs.push_back(
         {{"name", s.def.name}, {"file", s.def.file}, {"definition", sweep_definition_json(s.def)}});
   }

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "plumetrace/geometry.hpp"
+#include "plumetrace/rng.hpp"
 
 namespace plumetrace {
 
@@ -286,6 +287,35 @@ Quartiles quartiles(std::vector<double> values) {
   return {at(0.25), at(0.5), at(0.75)};
 }
 
+Interval bootstrap_mean_interval(std::span<const double> values, double level, int resamples,
+                                 std::uint64_t seed) {
+  std::vector<double> sample;
+  for (const double v : values) {
+    if (!std::isnan(v)) sample.push_back(v);
+  }
+  if (sample.size() < 2 || resamples < 1) return {};
+  Rng rng(seed);
+  const auto n = static_cast<std::uint64_t>(sample.size());
+  std::vector<double> means(static_cast<std::size_t>(resamples));
+  for (double& mean : means) {
+    double sum = 0.0;
+    for (std::uint64_t k = 0; k < n; ++k) {
+      // why: 53 uniform bits scaled to [0, n): a bias of n / 2^53, far below anything visible
+      const auto pick = static_cast<std::size_t>(rng.uniform() * static_cast<double>(n));
+      sum += sample[std::min(pick, sample.size() - 1)];
+    }
+    mean = sum / static_cast<double>(n);
+  }
+  std::sort(means.begin(), means.end());
+  const auto at = [&means](double q) {
+    const double h = q * static_cast<double>(means.size() - 1);
+    const auto i = static_cast<std::size_t>(std::floor(h));
+    if (i + 1 >= means.size()) return means.back();
+    return means[i] + (h - static_cast<double>(i)) * (means[i + 1] - means[i]);
+  };
+  return {at((1.0 - level) / 2.0), at((1.0 + level) / 2.0)};
+}
+
 PointStats summarize(std::span<const RunResult> runs) {
   PointStats out;
   out.runs = static_cast<std::int64_t>(runs.size());
@@ -322,6 +352,7 @@ PointStats summarize(std::span<const RunResult> runs) {
   }
   if (out.successes > 0) out.mean_time_success = time_success / static_cast<double>(out.successes);
   out.overhead = mean_ci(overheads);
+  out.overhead_bootstrap = bootstrap_mean_interval(overheads);
   out.overhead_quartiles = quartiles(std::move(overheads));
   return out;
 }

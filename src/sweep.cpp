@@ -26,7 +26,10 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
   for (const auto& o : overrides) {
     for (const auto& axis : def.axes) {
       if (o.key == axis.key) {
-        throw ConfigError(where + ": --set " + o.key + " names an axis of the sweep");
+        // why: a preset file's setting names its file, a --set its option
+        const std::string from =
+            o.origin.empty() || o.origin == "--set" ? "--set " : o.origin + ": ";
+        throw ConfigError(where + ": " + from + o.key + " names an axis of the sweep");
       }
     }
   }

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
+
+#include "plumetrace/rng.hpp"
 
 namespace plumetrace {
 namespace {
@@ -282,6 +285,72 @@ TEST(Summarize, NoRunsGivesNaNRatesAndAnUninformativeInterval) {
   EXPECT_TRUE(std::isnan(s.overhead.mean));
   EXPECT_TRUE(std::isnan(s.mean_time));
   EXPECT_TRUE(std::isnan(s.mean_time_success));
+}
+
+TEST(Bootstrap, StaysWithinTheSampleSoAnOverheadIntervalNeverGoesBelowOne) {
+  // a skewed overhead sample whose t interval reaches below the bound of 1
+  const std::vector<double> overheads{1.0, 1.0, 1.01, 5.0};
+  const MeanCi t = mean_ci(overheads);
+  ASSERT_LT(t.lo, 1.0);
+  const Interval b = bootstrap_mean_interval(overheads);
+  EXPECT_GE(b.lo, 1.0);
+  EXPECT_LE(b.hi, 5.0);
+  EXPECT_LE(b.lo, t.mean);
+  EXPECT_GE(b.hi, t.mean);
+  // and for many overhead samples of every size
+  Rng rng(7);
+  for (int n = 2; n < 40; ++n) {
+    std::vector<double> v;
+    for (int i = 0; i < n; ++i) v.push_back(1.0 - 0.3 * std::log(rng.uniform_open0()));
+    const Interval iv = bootstrap_mean_interval(v, 0.95, 500, static_cast<std::uint64_t>(n));
+    EXPECT_GE(iv.lo, *std::min_element(v.begin(), v.end())) << n;
+    EXPECT_LE(iv.hi, *std::max_element(v.begin(), v.end())) << n;
+    EXPECT_GE(iv.lo, 1.0) << n;
+  }
+}
+
+TEST(Bootstrap, MatchesTheTIntervalForALargeNormalSample) {
+  // n = 2000 normal values: both intervals estimate mean +- 1.96 se. The percentile ends of
+  // 2000 resamples scatter by sqrt(0.025 * 0.975 / 2000) / phi(1.96) = 0.06 se, so 4 sigma is
+  // 0.24 se; t versus z and n versus n - 1 add less than 0.001 se.
+  Rng rng(11);
+  std::vector<double> v;
+  for (int i = 0; i < 2000; ++i) v.push_back(rng.normal(1.2, 0.1));
+  const MeanCi t = mean_ci(v);
+  const Interval b = bootstrap_mean_interval(v);
+  const double se = t.stddev / std::sqrt(2000.0);
+  EXPECT_NEAR(b.lo, t.lo, 0.24 * se);
+  EXPECT_NEAR(b.hi, t.hi, 0.24 * se);
+}
+
+TEST(Bootstrap, IsTheSameOnEveryCallAndFollowsItsSeed) {
+  const std::vector<double> v{1.1, 1.3, 1.02, 1.8, 1.25, 1.07};
+  const Interval a = bootstrap_mean_interval(v), b = bootstrap_mean_interval(v);
+  EXPECT_EQ(a.lo, b.lo);
+  EXPECT_EQ(a.hi, b.hi);
+  const Interval other = bootstrap_mean_interval(v, 0.95, kBootstrapResamples, 99);
+  EXPECT_TRUE(other.lo != a.lo || other.hi != a.hi);
+}
+
+TEST(Bootstrap, NeedsTwoValuesAndSkipsNaN) {
+  EXPECT_TRUE(std::isnan(bootstrap_mean_interval(std::vector<double>{1.2}).lo));
+  EXPECT_TRUE(std::isnan(bootstrap_mean_interval(std::vector<double>{1.2, NAN}).hi));
+  const Interval with_nan = bootstrap_mean_interval(std::vector<double>{1.1, NAN, 1.3, 1.2});
+  const Interval without = bootstrap_mean_interval(std::vector<double>{1.1, 1.3, 1.2});
+  EXPECT_EQ(with_nan.lo, without.lo);
+  EXPECT_EQ(with_nan.hi, without.hi);
+}
+
+TEST(Summarize, GivesTheBootstrapIntervalOfTheSuccessfulRunsOverheads) {
+  const std::vector<RunResult> runs{run(Outcome::kSuccess, 1.2, 100, 1),
+                                    run(Outcome::kWall, 9.0, 50, 4),
+                                    run(Outcome::kSuccess, 1.6, 140, 2)};
+  const PointStats s = summarize(runs);
+  const Interval b = bootstrap_mean_interval(std::vector<double>{1.2, 1.6});
+  EXPECT_EQ(s.overhead_bootstrap.lo, b.lo);
+  EXPECT_EQ(s.overhead_bootstrap.hi, b.hi);
+  EXPECT_GE(s.overhead_bootstrap.lo, 1.2);
+  EXPECT_LE(s.overhead_bootstrap.hi, 1.6);
 }
 
 }  // namespace

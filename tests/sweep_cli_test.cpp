@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
@@ -167,15 +168,19 @@ TEST(SweepCli, ReusingAStoreWithAnotherDefinitionNeedsFresh) {
 
 TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
   const std::string out = testing::temp_path("reproduce", "");
-  ASSERT_EQ(wait_exit(spawn({"reproduce", "--runs", "1", "--out", out, "--quiet"})), 0);
+  ASSERT_EQ(wait_exit(spawn({"reproduce", "--runs", "1", "--out", out, "--quiet", "--presets",
+                             "plugin-published"})),
+            0);
   const std::string html = read_file(out + "/report.html");
   const std::string md = read_file(out + "/report.md");
   std::vector<std::string> figures;
   for (const char* set : {"A", "B", "C", "D", "E", "F", "G", "H", "I"}) {
     figures.push_back(std::string("set_") + set + ".png");
   }
-  figures.push_back("trajectories.png");
-  figures.push_back("sensitivity.png");
+  for (const char* f : {"trajectories.png", "sensitivity.png", "failures.png", "readings_map.png",
+                        "readings_success.png"}) {
+    figures.push_back(f);
+  }
   for (const auto& f : figures) {
     EXPECT_TRUE(std::filesystem::file_size(out + "/figures/" + f) > 1000) << f;
     EXPECT_NE(md.find("figures/" + f), std::string::npos) << f;
@@ -195,6 +200,27 @@ TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
   for (const char* file : {"results.sqlite", "summary.json", "runs.csv", "summary.csv"}) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
   }
+  // the main reading and the one asked for, each with its eleven verdicts and fixed values
+  const auto summary = nlohmann::json::parse(read_file(out + "/summary.json"));
+  ASSERT_EQ(summary["readings"].size(), 2u);
+  EXPECT_EQ(summary["readings"][0]["name"], "default");
+  EXPECT_EQ(summary["readings"][1]["name"], "plugin-published");
+  EXPECT_EQ(summary["readings"][1]["settings"]["plume.amount"], 1.0);
+  for (const auto& r : summary["readings"]) {
+    EXPECT_EQ(r["claims"].size(), 11u);
+    EXPECT_EQ(r["fixed"].size(), 3u);
+    EXPECT_EQ(r["held"].get<int>() + r["not_held"].get<int>() + r["unclear"].get<int>(), 11);
+  }
+  EXPECT_NE(html.find("plugin-published"), std::string::npos);
+}
+
+TEST(Reproduce, AnUnknownPresetExitsTwoNamingItBeforeAnyRun) {
+  const std::string out = testing::temp_path("reproduce_bad", "");
+  const auto o = testing::run_command(kCli + " reproduce --preset paper-literal --out " + out);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("unknown preset 'paper-literal'"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("plugin-published"), std::string::npos) << o.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/results.sqlite"));
 }
 
 }  // namespace

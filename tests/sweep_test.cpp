@@ -3,10 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "plumetrace/campaign.hpp"
 #include "plumetrace/io.hpp"
+#include "plumetrace/report.hpp"
 #include "plumetrace/store.hpp"
 #include "support/rows.hpp"
 #include "support/temp_path.hpp"
@@ -146,16 +149,123 @@ TEST(Experiments, TheNineSetsHold4050RunsWithTheirFixedValues) {
   EXPECT_EQ(total, 4050);
 }
 
-TEST(Experiments, TheLiteralSweepReallyRunsThePaperLiteralPlume) {
-  const std::string dir = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008/";
-  const ExpandedSweep sweep = expand_sweep(read_sweep_file(dir + "literal.toml"), {});
-  Scenario literal;
-  literal.plume = plume_preset(PlumePreset::kPaperLiteral);
-  for (const auto& p : sweep.points) {
-    EXPECT_EQ(p.scenario.plume.kernel, Kernel::kPrinted);
-    EXPECT_EQ(p.scenario.plume.noise_mode, NoiseMode::kPerStep);
-    EXPECT_EQ(p.scenario.plume.lifetime, Lifetime::kLeaveArena);
-    EXPECT_EQ(p.scenario.plume.release_shape, ReleaseShape::kDisc);
+const std::string kExperiments = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008";
+
+std::vector<SweepDef> nine_sets() {
+  std::vector<SweepDef> defs;
+  for (const char* name : {"A", "B", "C", "D", "E", "F", "G", "H", "I"}) {
+    defs.push_back(read_sweep_file(kExperiments + "/" + name + ".toml"));
+  }
+  return defs;
+}
+
+// a presets folder holding one file NAME.toml with `text`
+std::string presets_folder(const std::string& name, const std::string& text) {
+  const std::string folder = testing::temp_path("presets", "");
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder + "/" + name + ".toml") << text;
+  return folder;
+}
+
+TEST(Presets, TheFourReadingsSetTheSameKeysAndNoAxisOfTheNineSets) {
+  const auto names = preset_names(kExperiments + "/presets");
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"calibrated", "plugin", "plugin-published", "printed"}));
+  std::set<std::string> first;
+  for (const auto& name : names) {
+    const Reading r = read_reading(kExperiments + "/presets", name);
+    std::set<std::string> keys;
+    for (const auto& s : r.settings) keys.insert(s.key);
+    if (first.empty()) first = keys;
+    EXPECT_EQ(keys, first) << name << " decides other unknowns than " << names.front();
+    EXPECT_TRUE(keys.count("plume.preset") && keys.count("plume.amount")) << name;
+    EXPECT_EQ(reading_sets(nine_sets(), r, false).size(), 9u) << name;
+  }
+}
+
+TEST(Presets, APresetAppliesItsKeysToEverySetAndTheAxesStillVary) {
+  const Reading printed = read_reading(kExperiments + "/presets", "printed");
+  const Reading published = read_reading(kExperiments + "/presets", "plugin-published");
+  for (const auto& sweep : reading_sets(nine_sets(), printed, false)) {
+    for (const auto& p : sweep.points) {
+      // the paper-literal plume, from a set whose scenario file writes out the plugin's rows
+      EXPECT_EQ(p.scenario.plume.kernel, Kernel::kPrinted) << sweep.def.name;
+      EXPECT_EQ(p.scenario.plume.noise_mode, NoiseMode::kPerStep) << sweep.def.name;
+      EXPECT_EQ(p.scenario.plume.lifetime, Lifetime::kLeaveArena) << sweep.def.name;
+      EXPECT_EQ(p.scenario.plume.release_shape, ReleaseShape::kDisc) << sweep.def.name;
+      EXPECT_EQ(p.scenario.plume.amount, 8.3e9) << sweep.def.name;
+    }
+  }
+  const auto sets = reading_sets(nine_sets(), published, false);
+  std::set<std::string> configs;
+  for (const auto& p : sets[0].points) {
+    EXPECT_EQ(p.scenario.plume.amount, 1.0);
+    EXPECT_EQ(p.scenario.controller.algorithm, Algorithm::kCasting);
+    configs.insert(p.config_hash);
+  }
+  EXPECT_EQ(configs.size(), sets[0].points.size()) << "the axis of set A still varies";
+  for (const auto& sweep : sets) {
+    EXPECT_EQ(sweep.points[0].scenario.plume.amount, 1.0) << sweep.def.name;
+  }
+}
+
+TEST(Presets, OtherReadingsSetsArePrefixedAndTheMainOnesKeepTheirNames) {
+  const Reading plugin = read_reading(kExperiments + "/presets", "plugin");
+  EXPECT_EQ(reading_sets(nine_sets(), plugin, false)[3].def.name, "plugin/D");
+  EXPECT_EQ(reading_sets(nine_sets(), plugin, true)[3].def.name, "D");
+  // the default reading adds nothing: the sets as their files define them
+  const Reading none = read_reading(kExperiments + "/presets", kDefaultReading);
+  EXPECT_TRUE(none.settings.empty());
+  const auto defaults = reading_sets(nine_sets(), none, true);
+  EXPECT_EQ(defaults[0].points[0].config_hash,
+            expand_sweep(nine_sets()[0], {}).points[0].config_hash);
+}
+
+TEST(Presets, PlumePresetResetsTheScenarioFilesPlumeRowsAndExplicitRowsWin) {
+  // the explicit row comes before the preset in the file and still wins over it
+  const std::string folder = presets_folder("mixed", R"(
+[plume]
+kernel = "gaussian"
+preset = "paper-literal"
+)");
+  const Reading r = read_reading(folder, "mixed");
+  const Scenario& s = reading_sets(nine_sets(), r, false)[0].points[0].scenario;
+  EXPECT_EQ(s.plume.preset, PlumePreset::kPaperLiteral);
+  EXPECT_EQ(s.plume.kernel, Kernel::kGaussian);
+  // the scenario file's own rows (noise "velocity", release "ball") gave way to the preset's
+  EXPECT_EQ(s.plume.noise_mode, NoiseMode::kPerStep);
+  EXPECT_EQ(s.plume.release_shape, ReleaseShape::kDisc);
+}
+
+TEST(Presets, AnUnknownNameIsAnErrorNamingItAndTheKnownOnes) {
+  try {
+    read_reading(kExperiments + "/presets", "paper-literal");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("unknown preset 'paper-literal'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("default, calibrated, plugin, plugin-published, printed"), std::string::npos)
+        << msg;
+  }
+}
+
+TEST(Presets, BadKeysAndAxisKeysAreRejectedNamingTheFile) {
+  const std::string unknown = presets_folder("typo", "[plume]\namonut = 1.0\n");
+  try {
+    read_reading(unknown, "typo");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("typo.toml"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("plume.amonut"), std::string::npos) << e.what();
+  }
+  const std::string axis = presets_folder("axis", "[casting]\nbeta_deg = 30.0\n");
+  const Reading r = read_reading(axis, "axis");
+  try {
+    reading_sets(nine_sets(), r, false);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("axis.toml: casting.beta_deg names an axis"), std::string::npos) << msg;
   }
 }
 

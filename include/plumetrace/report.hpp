@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "plumetrace/claims.hpp"
+#include "plumetrace/io.hpp"
 #include "plumetrace/store.hpp"
 #include "plumetrace/sweep.hpp"
 
@@ -16,19 +17,35 @@ namespace plumetrace {
 SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
                    const std::vector<int>& points = {}, std::size_t axis = 0);
 
+/// The store name of experiment set `set` under a reading: the set's own name ("A") for the
+/// main reading, "READING/SET" ("plugin/A") for the others.
+std::string reading_sweep_name(const std::string& reading, bool main, const std::string& set);
+
+/// The experiment sets under a reading: each definition expanded with the reading's settings as
+/// overrides and named by reading_sweep_name. Throws ConfigError when the reading sets a key
+/// that is an axis of a set (naming the preset file and the key).
+std::vector<ExpandedSweep> reading_sets(const std::vector<SweepDef>& sets, const Reading& reading,
+                                        bool main);
+
+/// Failed runs re-run per algorithm at the fixed values (of the main reading) at most.
+inline constexpr int kFailuresExamined = 25;
+
 /// What `reproduce` hands to the report beyond the store's rows.
 struct ReproduceInfo {
-  std::string command;      ///< the command line
-  std::string preset;       ///< plume preset of the nine sets
-  int runs_override = 0;    ///< --runs (0: the sweep files')
-  int threads = 0;          ///< worker threads used
-  double elapsed = 0.0;     ///< seconds spent running (this call)
-  std::string base_config;  ///< the resolved base scenario (TOML)
+  std::string command;            ///< the command line
+  std::string preset;             ///< the main reading's name
+  std::vector<Reading> readings;  ///< every reading run, the main one first
+  int runs_override = 0;          ///< --runs (0: the sweep files')
+  int threads = 0;                ///< worker threads used
+  double elapsed = 0.0;           ///< seconds spent running (this call)
+  std::string base_config;        ///< the resolved base scenario (TOML)
 };
 
 /// Builds summary.json for the report (schema in docs/report.md): the nine sets' statistics,
-/// the claims, the sensitivity rows, one successful trajectory per algorithm at the fixed values
-/// (re-run from its seed and trial), and the plume's detection map.
+/// the claims, the sensitivity rows, one successful and one failed trajectory per algorithm at
+/// the fixed values (re-run from seed and trial), the plume's detection map, where failed runs
+/// end (up to kFailuresExamined re-run per algorithm), and for each reading its claims, its
+/// fixed-value statistics and its detection map.
 std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
                           const ReproduceInfo& info);
 

@@ -73,6 +73,22 @@ struct Quartiles {
 /// "type 7"); NaN values are skipped; empty gives NaN.
 Quartiles quartiles(std::vector<double> values);
 
+/// The seed of bootstrap_mean_interval's resamples when none is given (fixed, so that the
+/// interval of a sample is the same on every call and every machine).
+inline constexpr std::uint64_t kBootstrapSeed = 20080101;
+
+/// Resamples bootstrap_mean_interval draws when none is given.
+inline constexpr int kBootstrapResamples = 2000;
+
+/// Percentile bootstrap interval at `level` (default 0.95) of the mean of a sample: the
+/// (1-level)/2 and (1+level)/2 quantiles (type 7) of the means of `resamples` resamples drawn
+/// with replacement by our own Rng seeded with `seed`. NaN values are skipped; fewer than two
+/// values give NaN ends. It lies within [min, max] of the sample, so it respects any bound the
+/// values obey (an overhead is never below 1).
+Interval bootstrap_mean_interval(std::span<const double> values, double level = 0.95,
+                                 int resamples = kBootstrapResamples,
+                                 std::uint64_t seed = kBootstrapSeed);
+
 /// Statistics of one sweep point (SPEC section 7).
 struct PointStats {
   std::int64_t runs = 0;           ///< runs at this point
@@ -83,6 +99,7 @@ struct PointStats {
   double success_rate = NAN;       ///< successes / runs
   Interval success_ci;             ///< Wilson 95% interval of the success rate
   MeanCi overhead;                 ///< overhead d_t/d_u over successful runs only, t 95% interval
+  Interval overhead_bootstrap;     ///< percentile bootstrap 95% interval of the mean overhead
   Quartiles overhead_quartiles;    ///< overhead quartiles over successful runs
   double mean_time = NAN;          ///< mean run time over all runs (s)
   double mean_time_success = NAN;  ///< mean run time over successful runs (s)

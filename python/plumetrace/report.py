@@ -16,6 +16,7 @@ import base64
 import html
 import json
 import math
+import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -156,7 +157,7 @@ def _json_type(v: Any) -> str:
 
 _POINT_NUMBERS = ("runs", "successes", "walls", "timeouts", "gave_up", "success_rate",
                   "success_lo", "success_hi", "mean_time", "mean_losses")
-_OVERHEAD_NUMBERS = ("n", "mean", "lo", "hi", "median", "q1", "q3")
+_OVERHEAD_NUMBERS = ("n", "mean", "lo", "hi", "boot_lo", "boot_hi", "median", "q1", "q3")
 
 
 def _check_point(c: _Checker, p: Any, where: str, need_value: bool) -> None:
@@ -241,17 +242,8 @@ def _check_summary(data: Any, path: Path) -> dict:
     for i, m in enumerate(c.lst(data.get("trajectories_missing") or [], "trajectories_missing")):
         c.text(m, f"trajectories_missing[{i}]")
 
-    dmap = data.get("detection_map")
-    if dmap is not None:
-        c.obj(dmap, "detection_map")
-        xs = c.numbers(dmap.get("x"), "detection_map.x")
-        ys = c.numbers(dmap.get("y"), "detection_map.y")
-        rows = c.lst(dmap.get("fraction"), "detection_map.fraction")
-        if len(rows) != len(ys):
-            c.fail("detection_map.fraction", f"has {len(rows)} rows, y has {len(ys)} entries")
-        for j, row in enumerate(rows):
-            if len(c.numbers(row, f"detection_map.fraction[{j}]")) != len(xs):
-                c.fail(f"detection_map.fraction[{j}]", f"has {len(row)} entries, x has {len(xs)}")
+    if data.get("detection_map") is not None:
+        _check_map(c, data["detection_map"], "detection_map")
 
     for key, fields in (("arena", ("x_min", "x_max", "y_min", "y_max")),
                         ("source", ("x", "y", "radius", "success_radius"))):
@@ -260,9 +252,54 @@ def _check_summary(data: Any, path: Path) -> dict:
             for f in fields:
                 c.num(data[key].get(f), f"{key}.{f}")
 
+    for i, r in enumerate(c.lst(data.get("readings") or [], "readings")):
+        where = f"readings[{i}]"
+        c.obj(r, where)
+        c.text(r.get("name"), f"{where}.name")
+        c.text(r.get("file"), f"{where}.file", nullable=True)
+        for key in ("held", "not_held", "unclear", "success_radius"):
+            c.num(r.get(key), f"{where}.{key}")
+        if r.get("settings") is not None:
+            c.obj(r["settings"], f"{where}.settings")
+        for j, cl in enumerate(c.lst(r.get("claims") or [], f"{where}.claims")):
+            c.obj(cl, f"{where}.claims[{j}]")
+            c.text(cl.get("verdict"), f"{where}.claims[{j}].verdict")
+        for j, p in enumerate(c.lst(r.get("fixed") or [], f"{where}.fixed")):
+            _check_point(c, p, f"{where}.fixed[{j}]", need_value=False)
+            c.text(p.get("algorithm"), f"{where}.fixed[{j}].algorithm")
+        if r.get("detection_map") is not None:
+            _check_map(c, r["detection_map"], f"{where}.detection_map")
+
+    fails = data.get("failures")
+    if fails is not None:
+        c.obj(fails, "failures")
+        for i, a in enumerate(c.lst(fails.get("algorithms") or [], "failures.algorithms")):
+            where = f"failures.algorithms[{i}]"
+            c.obj(a, where)
+            c.text(a.get("algorithm"), f"{where}.algorithm")
+            for key in FAILURE_NUMBERS:
+                c.num(a.get(key), f"{where}.{key}")
+
     for i, sw in enumerate(c.lst(data.get("sweeps") or [], "sweeps")):
         c.obj(sw, f"sweeps[{i}]")
     return data
+
+
+FAILURE_NUMBERS = ("runs", "failed", "walls", "timeouts", "gave_up", "examined", "end_upwind",
+                   "end_upwind_wall", "end_within_1m", "passed_source", "came_within_0_5m",
+                   "closest_median_m", "end_distance_median_m")
+
+
+def _check_map(c: "_Checker", dmap: Any, where: str) -> None:
+    c.obj(dmap, where)
+    xs = c.numbers(dmap.get("x"), f"{where}.x")
+    ys = c.numbers(dmap.get("y"), f"{where}.y")
+    rows = c.lst(dmap.get("fraction"), f"{where}.fraction")
+    if len(rows) != len(ys):
+        c.fail(f"{where}.fraction", f"has {len(rows)} rows, y has {len(ys)} entries")
+    for j, row in enumerate(rows):
+        if len(c.numbers(row, f"{where}.fraction[{j}]")) != len(xs):
+            c.fail(f"{where}.fraction[{j}]", f"has {len(row)} entries, x has {len(xs)}")
 
 
 def _check_sensitivity(data: Any, path: Path) -> dict:
@@ -343,7 +380,7 @@ class Point:
     rate_hi: Optional[float]
     oh_n: int
     oh_mean: Optional[float]
-    oh_lo: Optional[float]
+    oh_lo: Optional[float]  # the interval the report shows: bootstrap when given, else t
     oh_hi: Optional[float]
     oh_median: Optional[float]
     oh_q1: Optional[float]
@@ -376,8 +413,8 @@ class Point:
             rate_hi=hi,
             oh_n=successes if oh_n is None else oh_n,
             oh_mean=_num(oh.get("mean")),
-            oh_lo=_num(oh.get("lo")),
-            oh_hi=_num(oh.get("hi")),
+            oh_lo=_num(oh.get("boot_lo")) if "boot_lo" in oh else _num(oh.get("lo")),
+            oh_hi=_num(oh.get("boot_hi")) if "boot_hi" in oh else _num(oh.get("hi")),
             oh_median=_num(oh.get("median")),
             oh_q1=_num(oh.get("q1")),
             oh_q3=_num(oh.get("q3")),
@@ -416,6 +453,44 @@ class SweepSet:
     @property
     def fixed_value(self) -> Optional[float]:
         return None if self.fixed_index is None else self.points[self.fixed_index].value
+
+
+
+# The paper's own sentence behind each claim of SPEC.md section 8 (Lochmatter & Martinoli 2008,
+# sections 4 and 5; docs/claims.md gives each claim's reading and test).
+PAPER_QUOTES = {
+    1: "The surge-spiral algorithm is extremely robust and virtually all 1350 runs succeeded.",
+    2: "Small angles yield a low distance overhead, but also a low success rate. In our setup, "
+       "only configurations with \u03b2 > 20\u00b0 resulted in acceptable success rates.",
+    3: "On one end of the scale, the success rate drops significantly, whereas on the other "
+       "end, the performance gets worse.",
+    4: "The accuracy of the wind sensor only has a marginal impact on the performance, and no "
+       "visible influence on the robustness as long as the accuracy is good enough. If the noise "
+       "is too high, however, the algorithm does not work at all.",
+    5: "As expected, a small spiral gap is advantageous, at least as long as the robot "
+       "reacquires the plume within one turn.",
+    6: "Figure 8 (E) also suggests that higher d_lost yield slightly better performance.",
+    7: "Wind sensor accuracy only affects the distance overhead of surge-spiral, and not its "
+       "success rate.",
+    8: "The distance overhead grows almost linearly with the cast distance, but at a fairly low "
+       "rate. Furthermore, for very low cast distances, the algorithm fails to work reliably.",
+    9: "The wind sensor noise seems to mainly affect the success rate.",
+    10: "The casting algorithm remains the worst among the three algorithm in terms of distance "
+        "overhead and success ratio. The results obtained with the surge-cast algorithm are "
+        "comparable to those of the surge-spiral algorithm.",
+    11: "The plume lost distance, d_lost, does not have a significant influence on the "
+        "performance of the algorithms. Well-chosen upwind angles, spiral gap or cast distances "
+        "are much more important.",
+}
+
+# The repository's root, whose docs the report links: this file is python/plumetrace/report.py
+# there, or a copy in BUILD/python/plumetrace/ of a build folder inside it.
+REPO_ROOT = next((p for p in Path(__file__).resolve().parents[1:4]
+                  if (p / "docs").is_dir() and (p / "experiments").is_dir()),
+                 Path(__file__).resolve().parents[2])
+
+OUTCOME_COLORS = {"success": "#4c9a4c", "wall": "#d9534f", "timeout": "#f0ad4e",
+                  "gave_up": "#8c6bb1"}
 
 
 # --------------------------------------------------------------------------------------------
@@ -525,7 +600,7 @@ def _asym_err(centre: Sequence[Optional[float]], lo, hi, scale: float = 1.0):
 
 
 def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_n: bool = True):
-    """Overhead bars from 1 (the straight-line optimum) with t-intervals and median diamonds.
+    """Overhead bars from 1 (the straight-line optimum) with bootstrap intervals and medians.
 
     Returns the indices of points that have no mean overhead (no successful run).
     """
@@ -601,7 +676,7 @@ def set_figure(s: SweepSet, path: Path) -> Path:
     ax_rate.set_title(f"{s.name}: success rate (Wilson 95%)", fontsize=10)
 
     _overhead_axis(ax_oh, x, s.points, colors)
-    ax_oh.set_title(f"{s.name}: overhead of successful runs (t 95%)", fontsize=10)
+    ax_oh.set_title(f"{s.name}: overhead of successful runs (bootstrap 95%)", fontsize=10)
 
     for ax in (ax_rate, ax_oh):
         ax.set_xticks(x)
@@ -638,12 +713,19 @@ def _state_palette(states: Iterable[str]) -> dict:
 
 
 def _trajectory_panels(summary: dict) -> list:
-    """(algorithm, trajectory or None) in the paper's order, then any other algorithm."""
+    """(algorithm, "success" or "failure", trajectory or None): per algorithm in the paper's
+    order (then any other), a successful run and a failed one."""
     first = {}
     for t in summary.get("trajectories") or []:
-        first.setdefault(t["algorithm"], t)
-    names = list(ALGORITHMS) + [a for a in first if a not in ALGORITHMS]
-    return [(a, first.get(a)) for a in names]
+        kind = "success" if (t.get("outcome") or "success") == "success" else "failure"
+        first.setdefault((t["algorithm"], kind), t)
+    algorithms = list(ALGORITHMS) + [a for a, _ in first if a not in ALGORITHMS]
+    panels = []
+    for a in dict.fromkeys(algorithms):
+        panels.append((a, "success", first.get((a, "success"))))
+        if (a, "failure") in first or summary.get("failures") is not None:
+            panels.append((a, "failure", first.get((a, "failure"))))
+    return panels
 
 
 def _arena(summary: dict):
@@ -653,7 +735,7 @@ def _arena(summary: dict):
 
 
 def trajectory_figure(summary: dict, path: Path) -> Path:
-    """Fig. 6: one successful run per algorithm over the detection map."""
+    """Fig. 6: per algorithm a successful and a failed run over the detection map."""
     panels = _trajectory_panels(summary)
     x_min, x_max, y_min, y_max = _arena(summary)
     aspect = (y_max - y_min) / max(x_max - x_min, 1e-9)
@@ -665,7 +747,7 @@ def trajectory_figure(summary: dict, path: Path) -> Path:
     sx, sy = _num(src.get("x")), _num(src.get("y"))
     radius, success_radius = _num(src.get("radius")), _num(src.get("success_radius"))
     mesh = None
-    for ax, (alg, traj) in zip(axes, panels):
+    for ax, (alg, kind, traj) in zip(axes, panels):
         if dmap is not None and dmap["x"] and dmap["y"]:
             frac = np.array([[np.nan if v is None else v for v in row] for row in dmap["fraction"]],
                             dtype=float)
@@ -684,13 +766,19 @@ def trajectory_figure(summary: dict, path: Path) -> Path:
             _draw_trajectory(ax, traj)
             bits = [f"set {traj['set']}" if traj.get("set") else None,
                     f"trial {traj['trial']}" if traj.get("trial") is not None else None,
-                    f"overhead {traj['overhead']:.2f}" if _num(traj.get("overhead")) is not None
-                    else None]
-            ax.set_title(f"{alg}: " + ", ".join(b for b in bits if b), fontsize=10)
+                    f"overhead {traj['overhead']:.2f}"
+                    if kind == "success" and _num(traj.get("overhead")) is not None else None,
+                    f"closest {traj['closest_m']:.2f} m to the source"
+                    if kind == "failure" and _num(traj.get("closest_m")) is not None else None]
+            label = ("succeeded" if kind == "success"
+                     else f"failed ({str(traj.get('outcome') or '?').replace('_', ' ')})")
+            ax.set_title(f"{alg}, {label}: " + ", ".join(b for b in bits if b), fontsize=10,
+                         color="black" if kind == "success" else "#a33")
         else:
-            ax.set_title(f"{alg}: no successful run at the fixed values", fontsize=10,
-                         color="#a33")
-            ax.text(0.5, 0.5, "no successful run", transform=ax.transAxes, ha="center",
+            what = "successful" if kind == "success" else "failed"
+            ax.set_title(f"{alg}: no {what} run at the fixed values", fontsize=10,
+                         color="#a33" if kind == "success" else "black")
+            ax.text(0.5, 0.5, f"no {what} run", transform=ax.transAxes, ha="center",
                     va="center", color="#a33", fontsize=12, zorder=6,
                     bbox=dict(facecolor="white", edgecolor="#a33", boxstyle="round"))
         ax.set_xlim(x_min, x_max)
@@ -783,7 +871,7 @@ def sensitivity_figure(sens: dict, path: Path) -> Path:
     ax_rate.set_title("success rate (Wilson 95%)", fontsize=10)
     ax_oh.axhline(1.0, color="#555555", linewidth=0.6, zorder=1)
     ax_oh.set_ylabel("distance overhead $d_t/d_u$")
-    ax_oh.set_title("overhead of successful runs (t 95%)", fontsize=10)
+    ax_oh.set_title("overhead of successful runs (bootstrap 95%)", fontsize=10)
     for ax in (ax_rate, ax_oh):
         ax.set_xticks(range(len(algorithms)))
         ax.set_xticklabels(algorithms)
@@ -1119,7 +1207,8 @@ def _header_blocks(summary: dict) -> list:
     meta = [
         ("version", summary.get("version") or DASH),
         ("command", summary.get("generated_by") or DASH),
-        ("preset", summary.get("preset") or DASH),
+        ("main reading", summary.get("preset") or DASH),
+        ("other readings", ", ".join(r.get("name") for r in _readings(summary)[1:]) or DASH),
         ("master seed", fmt_raw_int(summary.get("seed"))),
         ("runs per point", fmt_value(_num(summary.get("runs_per_point")))),
         ("total runs", fmt_value(_num(summary.get("total_runs")))),
@@ -1127,14 +1216,16 @@ def _header_blocks(summary: dict) -> list:
         ("threads", fmt_value(_num(summary.get("threads")))),
     ]
     if claims:
-        meta.append(("claims", f"{counts['holds']} hold, {counts['does not hold']} do not hold, "
-                               f"{counts['unclear']} unclear (of {len(claims)})"))
+        meta.append(("claims (main reading)",
+                     f"{counts['holds']} hold, {counts['does not hold']} do not hold, "
+                     f"{counts['unclear']} unclear (of {len(claims)})"))
     rows = [[Cell(k, cls="key"), Cell(v, cls="mono" if k == "command" else None)] for k, v in meta]
     return [
-        Para(["Reproduction of Lochmatter & Martinoli (2008), \u201cSimulation Experiments with "
-              "Bio-Inspired Algorithms for Odor Source Localization in Laminar Wind Flow\u201d: "
-              "the nine experiment sets of its section 3.6, its Figs. 6\u20139 and the claims of "
-              "its section 4, as SPEC.md sections 6\u20138 state them."]),
+        Para(["The nine experiment sets of Lochmatter & Martinoli (2008), \u201cSimulation "
+              "Experiments with Bio-Inspired Algorithms for Odor Source Localization in Laminar "
+              "Wind Flow\u201d (its section 3.6), re-run in plumetrace under one or more "
+              "readings of what the paper leaves unsaid, with its Figs. 6\u20139 redrawn and the "
+              "claims of its section 4 checked (SPEC.md sections 6\u20138)."]),
         Table(header=None, rows=rows),
     ]
 
@@ -1143,7 +1234,9 @@ def _set_sections(out_dir: Path, fig_dir: Path, sets: list, written: list) -> li
     intro = Section("sets", "Experiment sets A\u2013I (paper Figs. 7\u20139)", [
         Para(["For each set, left: success rate with its Wilson 95% interval (labels: successes/"
               "runs); right: mean distance overhead d_t/d_u over the successful runs with a 95% "
-              "t-interval (normal data, as in the paper), bars drawn from 1 (the straight-line "
+              "percentile bootstrap interval (it never reaches below 1, the bound of an "
+              "overhead; the claims' verdicts use the t interval, see ", _doc_link(out_dir, "docs/claims.md"),
+              "), bars drawn from 1 (the straight-line "
               "optimum), diamonds at the median, n = successful runs. The darker bar and the bold "
               "row are the fixed value the other sets use. Outcome counts are success / wall / "
               "timeout / gave up."]),
@@ -1197,30 +1290,39 @@ def _trajectory_section(out_dir: Path, fig_dir: Path, summary: dict, written: li
     written.append(path)
     panels = _trajectory_panels(summary)
     missing = list(dict.fromkeys(list(summary.get("trajectories_missing") or [])
-                                 + [a for a, t in panels if t is None]))
+                                 + [a for a, k, t in panels if t is None and k == "success"]))
     blocks = [_fig(out_dir, path,
-                   "Sample runs at the fixed values (paper Fig. 6). Grey: fraction of sampled "
-                   "instants with odor (detection map). Red disc: the source; dashed circle: the "
-                   "success radius. The trajectory is coloured by controller state; triangle: "
-                   "start, circle: end. Wind blows along +x (left to right).",
-                   "Sample trajectories of the three algorithms over the detection map")]
+                   "Sample runs at the fixed values (paper Fig. 6): per algorithm the first "
+                   "successful and the first failed run (by trial), re-run from their seed and "
+                   "trial. Grey: fraction of sampled instants with odor (detection map). Red "
+                   "disc: the source; dashed circle: the success radius. The trajectory is "
+                   "coloured by controller state; triangle: start, circle: end. Wind blows "
+                   "along +x (left to right).",
+                   "Sample trajectories of the three algorithms, successful and failed, over "
+                   "the detection map")]
     rows = []
-    for alg, t in panels:
+    for alg, kind, t in panels:
         if t is None:
-            rows.append([alg, DASH, DASH, DASH, DASH, Cell("no successful run", cls="unclear")])
+            rows.append([alg, DASH, DASH, DASH, DASH, DASH,
+                         Cell(f"no {'successful' if kind == 'success' else 'failed'} run",
+                              cls="unclear" if kind == "success" else None)])
         else:
+            outcome = str(t.get("outcome") or DASH)
             rows.append([alg, str(t.get("set") or DASH), fmt_raw_int(t.get("trial")),
-                         fmt_raw_int(t.get("seed")), fmt_oh(_num(t.get("overhead"))),
-                         str(t.get("outcome") or DASH)])
-    blocks.append(Table(header=["algorithm", "set", "trial", "seed", "overhead", "outcome"],
-                        rows=rows))
+                         fmt_raw_int(t.get("seed")),
+                         fmt_oh(_num(t.get("overhead"))) if kind == "success" else DASH,
+                         fmt_oh(_num(t.get("closest_m"))),
+                         Cell(outcome, cls="holds" if outcome == "success" else "fails")])
+    blocks.append(Table(header=["algorithm", "set", "trial", "seed", "overhead",
+                                "closest to the source (m)", "outcome"], rows=rows))
     if missing:
         blocks.append(Para(["No successful run at the fixed values for: ",
                             ", ".join(missing), "; those panels show the plume only."]))
-    return Section("trajectories", "Sample trajectories (paper Fig. 6)", blocks)
+    return Section("trajectories", "Sample trajectories, successful and failed (paper Fig. 6)",
+                   blocks)
 
 
-def _claims_section(summary: dict) -> Section:
+def _claims_section(out_dir: Path, summary: dict) -> Section:
     claims = summary.get("claims") or []
     if not claims:
         return Section("claims", "The paper's claims", [Para(["This summary has no claims."])])
@@ -1232,9 +1334,13 @@ def _claims_section(summary: dict) -> Section:
                      cl.get("text") or "",
                      Cell(f"{symbol} {cl.get('verdict')}", cls=f"verdict {cls}"),
                      cl.get("evidence") or DASH])
-    return Section("claims", "The paper's claims (SPEC.md section 8)", [
-        Para(["Each claim of the paper's section 4 is checked against the sets above, never tuned "
-              "to pass. Verdicts: holds (green), does not hold (red), unclear (amber)."]),
+    return Section("claims", f"The claims and their evidence ({summary.get('preset') or 'main'} "
+                   "reading)", [
+        Para(["Each claim of the paper's section 4, as SPEC.md section 8 states it, checked "
+              "against the sets above, never tuned to pass; the rules are in ",
+              _doc_link(out_dir, "docs/claims.md"), ". Verdicts: holds (green), does not hold "
+              "(red), unclear (amber). The verdicts of the other readings are under ",
+              ("a", "What was found", "#verdict"), "."]),
         Table(header=["id", "claim", "verdict", "evidence"], rows=rows),
     ])
 
@@ -1258,10 +1364,9 @@ def _sensitivity_section(out_dir: Path, fig_dir: Path, summary: dict, written: l
         rows.append(row)
     return Section("sensitivity", title, [
         Para(["The three algorithms at their fixed values (sets A, D, G) rerun under each "
-              "variant: the success radius the supervisor accepts (SPEC.md section 6; 0.185 m is "
-              "the default) and the plume equations as printed in the paper (", ("code", "preset="
-              "paper-literal"), "). Each cell: success rate [Wilson 95%], then mean overhead "
-              "[t 95%] of the successful runs."]),
+              "success radius the supervisor accepts (SPEC.md section 6; 0.185 m is the "
+              "default). Each cell: success rate [Wilson 95%], then mean overhead "
+              "[bootstrap 95%] of the successful runs."]),
         Table(header=["variant"] + algorithms, rows=rows),
         _fig(out_dir, path, "Success rate (left) and mean distance overhead of the successful runs "
              "(right) per algorithm, one bar per variant, with 95% intervals.",
@@ -1358,7 +1463,406 @@ def _reproducibility_section(summary: dict, out_dir: Path) -> Section:
 
 
 # --------------------------------------------------------------------------------------------
+# Readings, verdicts and failures
+
+
+def _doc_link(out_dir: Path, rel: str) -> tuple:
+    """A link to one of the repository's documents, relative to the report's folder (the
+    repository-relative path when this module does not run from a checkout)."""
+    target = REPO_ROOT / rel
+    href = rel
+    if (REPO_ROOT / "docs").is_dir():
+        try:
+            href = os.path.relpath(target, Path(out_dir).resolve()).replace(os.sep, "/")
+        except ValueError:  # another drive (Windows)
+            href = rel
+    return ("a", rel, href)
+
+
+def _readings(summary: dict) -> list:
+    """The readings in the summary, the main one first; a summary without them has one, built
+    from its own claims."""
+    readings = list(summary.get("readings") or [])
+    if not readings:
+        claims = summary.get("claims") or []
+        counts = _verdict_counts(claims)
+        readings = [{"name": summary.get("preset") or "main", "main": True, "claims": claims,
+                     "held": counts["holds"], "not_held": counts["does not hold"],
+                     "unclear": counts["unclear"]}]
+    readings.sort(key=lambda r: not r.get("main"))
+    return readings
+
+
+def _verdict_counts(claims: list) -> dict:
+    counts = {v: 0 for v in VERDICT_STYLE}
+    for cl in claims:
+        key = (cl.get("verdict") or "").strip().lower()
+        if key in counts:
+            counts[key] += 1
+    return counts
+
+
+def _held(reading: dict) -> tuple:
+    """(holds, does not hold, unclear, claims) of a reading."""
+    claims = reading.get("claims") or []
+    counts = _verdict_counts(claims)
+    held = _int(reading.get("held"))
+    return (counts["holds"] if held is None else held, counts["does not hold"],
+            counts["unclear"], len(claims))
+
+
+def short_figure(claim: dict) -> str:
+    """The evidence part that decided the verdict: the first contradicted part of a claim that
+    does not hold, the first unclear part of an unclear one, else the first part."""
+    parts = [p.strip() for p in (claim.get("evidence") or "").split("; ") if p.strip()]
+    if not parts:
+        return DASH
+    want = {"does not hold": "-> no", "unclear": "-> unclear"}.get(
+        (claim.get("verdict") or "").strip().lower())
+    chosen = next((p for p in parts if want and p.endswith(want)), parts[0])
+    for suffix in ("-> yes", "-> no", "-> unclear"):
+        if chosen.endswith(suffix):
+            chosen = chosen[: -len(suffix)].rstrip()
+    return chosen if len(chosen) <= 140 else chosen[:137] + "..."
+
+
+def _failure_totals(summary: dict) -> Optional[dict]:
+    fails = (summary.get("failures") or {}).get("algorithms") or []
+    if not fails:
+        return None
+    total = {k: sum(_int(a.get(k)) or 0 for a in fails)
+             for k in ("runs", "failed", "walls", "timeouts", "gave_up", "examined")}
+    ends = [e for a in fails for e in (a.get("ends") or [])]
+    src = {a.get("algorithm"): (_num(a.get("source_x")) or 0.0, _num(a.get("source_y")) or 0.0)
+           for a in fails}
+    upwind_wall = upwind = near = 0
+    for a in fails:
+        sx, sy = src[a.get("algorithm")]
+        for e in a.get("ends") or []:
+            x, y = _num(e.get("x")), _num(e.get("y"))
+            if x is None or y is None:
+                continue
+            if x < sx:
+                upwind += 1
+                upwind_wall += e.get("outcome") == "wall"
+            elif math.hypot(x - sx, y - sy) <= 1.0:
+                near += 1
+    total.update(ends=len(ends), upwind_wall=upwind_wall, upwind_other=upwind - upwind_wall,
+                 near=near, far=len(ends) - upwind - near,
+                 closest=[_num(a.get("closest_median_m")) for a in fails
+                          if _num(a.get("closest_median_m")) is not None])
+    return total
+
+
+def failure_sentence(summary: dict) -> Optional[str]:
+    """The main failure mode at the fixed values in one sentence, from the summary's numbers."""
+    t = _failure_totals(summary)
+    if t is None:
+        return None
+    if t["failed"] == 0:
+        return f"None of the {t['runs']} runs at the paper's fixed values failed."
+    head = (f"{t['failed']} of {t['runs']} runs at the paper's fixed values fail "
+            f"({fmt_pct(t['failed'] / t['runs'])}): {t['walls']} at a wall, {t['timeouts']} "
+            f"by timeout, {t['gave_up']} giving up.")
+    n = t["ends"]
+    if n == 0:
+        return head
+    places = [
+        (t["upwind_wall"], "end at a wall upwind of the source, after passing beside it"),
+        (t["upwind_other"], "end upwind of the source (not at a wall), after passing beside it"),
+        (t["near"], "end downwind of the source but within 1 m of it"),
+        (t["far"], "end more than 1 m downwind of the source"),
+    ]
+    count, where = max(places, key=lambda p: p[0])
+    share = count / n
+    lead = "Most" if share > 0.5 else "The largest group of"
+    closest = sorted(t["closest"])
+    near_text = ""
+    if closest:
+        span = (f"{closest[0]:.2f} m" if closest[-1] - closest[0] < 0.005
+                else f"{closest[0]:.2f}\u2013{closest[-1]:.2f} m")
+        near_text = (f"; on their way they came within a median {span} of its centre "
+                     "(per algorithm)")
+    sample = "" if n == t["failed"] else f" of the {n} re-run"
+    return f"{lead} failed runs ({fmt_pct(share)}{sample}) {where}{near_text}. {head}"
+
+
+def failures_figure(summary: dict, path: Path) -> Path:
+    """Outcomes at the fixed values per algorithm, and where the failed runs end."""
+    fails = (summary.get("failures") or {}).get("algorithms") or []
+    fig = _new_figure(10, 3.6)
+    ax_out, ax_map = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 1.6]})
+    names = [a.get("algorithm") or "?" for a in fails]
+    left = np.zeros(len(fails))
+    for key, label in (("success", "success"), ("walls", "wall"), ("timeouts", "timeout"),
+                       ("gave_up", "gave up")):
+        runs = np.array([max(_int(a.get("runs")) or 0, 1) for a in fails], dtype=float)
+        if key == "success":
+            counts = np.array([(_int(a.get("runs")) or 0) - (_int(a.get("failed")) or 0)
+                               for a in fails], dtype=float)
+        else:
+            counts = np.array([_int(a.get(key)) or 0 for a in fails], dtype=float)
+        share = 100 * counts / runs
+        color = OUTCOME_COLORS["gave_up" if key == "gave_up" else label.split()[0]]
+        ax_out.barh(range(len(fails)), share, left=left, color=color, edgecolor="white",
+                    label=label)
+        left += share
+    ax_out.set_yticks(range(len(fails)))
+    ax_out.set_yticklabels(names)
+    ax_out.invert_yaxis()
+    ax_out.set_xlim(0, 100)
+    ax_out.set_xlabel("share of runs at the fixed values (%)")
+    ax_out.set_title("how runs end", fontsize=10)
+    ax_out.legend(fontsize=7, loc="lower right", framealpha=0.85)
+
+    x_min, x_max, y_min, y_max = _arena(summary)
+    src = summary.get("source") or {}
+    sx, sy = _num(src.get("x")) or 1.0, _num(src.get("y")) or 0.0
+    markers = ("o", "s", "^", "D", "v")
+    for k, a in enumerate(fails):
+        ends = a.get("ends") or []
+        xs = [_num(e.get("x")) for e in ends]
+        ys = [_num(e.get("y")) for e in ends]
+        colors = [OUTCOME_COLORS.get(e.get("outcome"), MISSING_COLOR) for e in ends]
+        ax_map.scatter(xs, ys, c=colors, marker=markers[k % len(markers)], s=22,
+                       edgecolors="black", linewidths=0.3, label=a.get("algorithm"), zorder=3)
+    sr = _num(src.get("success_radius"))
+    ax_map.add_patch(Circle((sx, sy), _num(src.get("radius")) or 0.12, facecolor="#b2182b",
+                            edgecolor="black", linewidth=0.5, zorder=2))
+    if sr is not None:
+        ax_map.add_patch(Circle((sx, sy), sr, fill=False, edgecolor="#b2182b", linestyle="--",
+                                zorder=2))
+    ax_map.add_patch(Circle((sx, sy), 1.0, fill=False, edgecolor="#777777", linestyle=":",
+                            zorder=1))
+    ax_map.axvline(sx, color="#777777", linewidth=0.6, zorder=1)
+    ax_map.set_xlim(x_min, min(x_max, x_min + 8.0))
+    ax_map.set_ylim(y_min, y_max)
+    ax_map.set_aspect("equal")
+    ax_map.set_xlabel("x (m), downwind \u2192")
+    ax_map.set_ylabel("y (m)")
+    ax_map.set_title("where failed runs end (colour: outcome)", fontsize=10)
+    if fails:
+        handles = [Line2D([], [], marker=markers[k % len(markers)], linestyle="none",
+                          color="#cccccc", markeredgecolor="black", label=a.get("algorithm"))
+                   for k, a in enumerate(fails)]
+        ax_map.legend(handles=handles, fontsize=7, loc="lower right", framealpha=0.85)
+    return _save(fig, path)
+
+
+def _draw_map(ax, dmap: Optional[dict], vmax: Optional[float] = None):
+    if not dmap or not dmap.get("x") or not dmap.get("y"):
+        return None
+    frac = np.array([[np.nan if v is None else v for v in row] for row in dmap["fraction"]],
+                    dtype=float)
+    top = vmax if vmax is not None else (np.nanmax(frac) if np.isfinite(frac).any() else 1.0)
+    return ax.pcolormesh(np.asarray(dmap["x"], float), np.asarray(dmap["y"], float), frac,
+                         shading="nearest", cmap=ODOR_CMAP, vmin=0.0, vmax=max(float(top), 1e-9),
+                         rasterized=True, zorder=0)
+
+
+def readings_map_figure(summary: dict, readings: list, path: Path) -> Path:
+    """Each reading's detection map over the upwind half of the arena."""
+    x_min, x_max, y_min, y_max = _arena(summary)
+    x_hi = min(x_max, x_min + 8.0)
+    cols = 2 if len(readings) > 1 else 1
+    rows = (len(readings) + cols - 1) // cols
+    panel_h = 4.4 * (y_max - y_min) / max(x_hi - x_min, 1e-9) + 0.35
+    fig = _new_figure(10, rows * panel_h + 0.4)
+    axes = fig.subplots(rows, cols, squeeze=False).ravel()
+    src = summary.get("source") or {}
+    sx, sy = _num(src.get("x")), _num(src.get("y"))
+    mesh = None
+    for ax, r in zip(axes, readings):
+        m = _draw_map(ax, r.get("detection_map"), vmax=1.0)
+        mesh = m or mesh
+        if m is None:
+            ax.text(0.5, 0.5, "no map", transform=ax.transAxes, ha="center", va="center",
+                    color=MISSING_COLOR)
+        if sx is not None and sy is not None:
+            ax.add_patch(Circle((sx, sy), _num(src.get("radius")) or 0.12, facecolor="#b2182b",
+                                edgecolor="black", linewidth=0.5, zorder=3))
+            sr = _num(r.get("success_radius"))
+            if sr is not None:
+                ax.add_patch(Circle((sx, sy), sr, fill=False, edgecolor="#b2182b",
+                                    linestyle="--", linewidth=1.0, zorder=3))
+        ax.set_xlim(x_min, x_hi)
+        ax.set_ylim(y_min, y_max)
+        ax.set_aspect("equal")
+        ax.tick_params(labelsize=7)
+        held, no, unclear, n = _held(r)
+        ax.set_title(f"{r.get('name')}{' (main)' if r.get('main') else ''}: "
+                     f"{held} of {n} claims hold", fontsize=9)
+    for ax in axes[len(readings):]:
+        ax.axis("off")
+    if mesh is not None:
+        cbar = fig.colorbar(mesh, ax=list(axes[:len(readings)]), shrink=0.6, pad=0.01)
+        cbar.set_label("fraction of instants with odor", fontsize=8)
+        cbar.ax.tick_params(labelsize=7)
+    return _save(fig, path)
+
+
+def _fixed_points(reading: dict) -> dict:
+    return {p.get("algorithm"): Point.from_json(p) for p in reading.get("fixed") or []}
+
+
+def readings_success_figure(readings: list, path: Path) -> Path:
+    """Success rate at the fixed values per algorithm, one bar per reading (Wilson 95%)."""
+    fig = _new_figure(10, 3.4)
+    ax = fig.subplots()
+    n = max(len(readings), 1)
+    width = 0.8 / n
+    cmap = colormaps["tab10"]
+    for k, r in enumerate(readings):
+        pts = _fixed_points(r)
+        for ai, alg in enumerate(ALGORITHMS):
+            p = pts.get(alg)
+            if p is None or p.rate is None:
+                continue
+            xi = ai + (k - (n - 1) / 2) * width
+            ax.bar(xi, 100 * p.rate, width=width, color=cmap(k % 10), edgecolor="#333333",
+                   linewidth=0.3, zorder=2,
+                   label=(r.get("name") + (" (main)" if r.get("main") else "")) if ai == 0
+                   else None)
+            ax.errorbar([xi], [100 * p.rate],
+                        yerr=_asym_err([p.rate], [p.rate_lo], [p.rate_hi], 100), fmt="none",
+                        ecolor="black", elinewidth=0.8, capsize=2, zorder=3)
+    ax.set_xticks(range(len(ALGORITHMS)))
+    ax.set_xticklabels(ALGORITHMS)
+    ax.set_ylim(0, 105)
+    ax.set_ylabel("success rate (%)")
+    ax.set_title("success at the paper's fixed values (sets A, D, G), Wilson 95%", fontsize=10)
+    ax.grid(axis="y", color="#e5e5e5", zorder=0)
+    ax.set_axisbelow(True)
+    ax.legend(fontsize=8, ncol=min(n, 5), loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              frameon=False)
+    return _save(fig, path)
+
+
+def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list) -> Section:
+    readings = _readings(summary)
+    main = readings[0]
+    held, no, unclear, n = _held(main)
+    runs = fmt_value(_num(summary.get("runs_per_point")))
+    blocks = [Para([("b", f"Under the {main.get('name')} reading, {held} of {n} claims hold"),
+                    f", {no} do not hold and {unclear} are unclear, at {runs} runs per value. ",
+                    "A reading fixes what the paper leaves unsaid or prints inconsistently "
+                    "(the amount per filament, the plume's noise and kernel, the success "
+                    "radius, ...); each is listed with its evidence in ",
+                    _doc_link(out_dir, "docs/fidelity.md"), ". The model: ",
+                    _doc_link(out_dir, "docs/model.md"), "; how each claim is tested: ",
+                    _doc_link(out_dir, "docs/claims.md"), "."])]
+    rows = []
+    for r in readings:
+        h, d, u, total = _held(r)
+        rows.append([Cell(r.get("name") + (" (main)" if r.get("main") else ""), cls="key"),
+                     Cell(str(r.get("file") or "built-in defaults"), cls="mono"),
+                     Cell(str(h), cls="holds", num=True), Cell(str(d), cls="fails", num=True),
+                     Cell(str(u), cls="unclear", num=True), Cell(str(total), num=True)])
+    blocks.append(Table(header=["reading", "preset file", "hold", "do not hold", "unclear",
+                                "claims"], rows=rows))
+
+    sentence = failure_sentence(summary)
+    if sentence:
+        blocks.append(Para([("b", "Main failure mode: "), sentence]))
+        path = failures_figure(summary, fig_dir / "failures.png")
+        written.append(path)
+        examined = _int((summary.get("failures") or {}).get("examined_max"))
+        blocks.append(_fig(out_dir, path,
+                           "Left: how the runs at the paper's fixed values end, per algorithm "
+                           "(main reading). Right: where failed runs end"
+                           + (f" (the first {examined} failed runs per algorithm, re-run from "
+                              "their seed and trial)" if examined else "")
+                           + "; red disc: source, dashed: success radius, dotted: 1 m around "
+                           "the source, vertical line: the source's x. Wind blows along +x.",
+                           "Outcomes at the fixed values and where failed runs end"))
+
+    claim_rows = []
+    main_claims = {_int(c.get("id")): c for c in main.get("claims") or []}
+    by_reading = [{_int(c.get("id")): c for c in r.get("claims") or []} for r in readings]
+    for cid in sorted(i for i in main_claims if i is not None):
+        c = main_claims[cid]
+        row = [Cell(str(cid), num=True),
+               Cell("\u201c" + PAPER_QUOTES.get(cid, c.get("text") or "") + "\u201d")]
+        for claims in by_reading:
+            v = (claims.get(cid) or {}).get("verdict")
+            cls, _, symbol = verdict_style(v)
+            row.append(Cell(symbol, cls=f"cell {cls}", title=v or DASH))
+        row.append(Cell(short_figure(c), cls="mono"))
+        claim_rows.append(row)
+    if claim_rows:
+        blocks.append(Para(["Each claim as the paper words it, the verdict under each reading "
+                            "(\u2713 holds, \u2717 does not hold, ? unclear) and what the data say "
+                            f"under the {main.get('name')} reading: the figure that decided its "
+                            "verdict. The full evidence is under ",
+                            ("a", "the claims", "#claims"), "."]))
+        blocks.append(Table(header=["id", "the paper says"] + [r.get("name") for r in readings]
+                            + [f"what the data say ({main.get('name')})"], rows=claim_rows))
+    return Section("verdict", "What was found", blocks)
+
+
+def _setting_text(v: Any) -> str:
+    if _is_number(v):
+        return f"{v:g}"
+    return json.dumps(v)
+
+
+def _readings_section(out_dir: Path, fig_dir: Path, summary: dict, written: list) -> Section:
+    readings = [r for r in _readings(summary) if r.get("fixed") or r.get("detection_map")]
+    title = "The readings side by side"
+    if not readings:
+        return Section("readings", title, [Para(["This summary has no readings."])])
+    keys = list(dict.fromkeys(k for r in readings for k in (r.get("settings") or {})))
+    blocks = [Para(["Each reading is a preset file (", ("code", "experiments/lochmatter2008/"
+                                                                "presets/NAME.toml"),
+                    ") applied on top of every experiment set; ", ("code", "default"),
+                    " adds nothing to the sets' own scenario. Why each value: ",
+                    _doc_link(out_dir, "docs/fidelity.md"), "."])]
+    if keys:
+        blocks.append(Table(header=["key"] + [r.get("name") for r in readings], rows=[
+            [Cell(k, cls="mono")] + [Cell(_setting_text((r.get("settings") or {}).get(k))
+                                          if k in (r.get("settings") or {}) else "(default)",
+                                          cls="mono") for r in readings]
+            for k in keys]))
+    path = readings_success_figure(readings, fig_dir / "readings_success.png")
+    written.append(path)
+    blocks.append(_fig(out_dir, path, "Success rate of the three algorithms at the paper's fixed "
+                       "values under each reading, with Wilson 95% intervals.",
+                       "Success at the fixed values per reading"))
+    rows = []
+    for r in readings:
+        pts = _fixed_points(r)
+        row = [Cell(r.get("name") + (" (main)" if r.get("main") else ""), cls="key")]
+        for alg in ALGORITHMS:
+            p = pts.get(alg)
+            row.append(Cell(DASH) if p is None else
+                       Cell(f"{p.successes}/{p.runs} = {fmt_rate(p)}\n{fmt_overhead(p)}",
+                            num=True))
+        rows.append(row)
+    blocks.append(Table(header=["reading"] + list(ALGORITHMS), rows=rows,
+                        caption="At the fixed values: successes/runs = success rate [Wilson 95%], "
+                                "then the mean overhead [bootstrap 95%] of the successful runs."))
+    path = readings_map_figure(summary, readings, fig_dir / "readings_map.png")
+    written.append(path)
+    blocks.append(_fig(out_dir, path, "Detection map of each reading: the fraction of instants "
+                       "at which a sensor at that point perceives odor (the same scale, 0 to 1, "
+                       "in every panel), over the upwind 8 m of the arena. Red disc: the source; "
+                       "dashed circle: the reading's success radius.",
+                       "Detection maps of the readings"))
+    return Section("readings", title, blocks)
+
+
+# --------------------------------------------------------------------------------------------
 # Entry points
+
+
+def report_title(summary: dict) -> str:
+    """What was done and what it found, never that the paper was reproduced."""
+    main = _readings(summary)[0]
+    held, _, _, n = _held(main)
+    sets = len(summary.get("sets") or [])
+    count = {9: "nine"}.get(sets, str(sets))
+    return (f"Lochmatter & Martinoli (2008), {count} experiment sets re-run: {held} of {n} "
+            f"claims hold under the {main.get('name')} reading")
 
 
 def build_report(out_dir: Union[str, Path]) -> list:
@@ -1377,16 +1881,19 @@ def build_report(out_dir: Union[str, Path]) -> list:
     figures: list = []
     sets = [SweepSet.from_json(s) for s in summary["sets"]]
 
-    # header, sets (Figs. 7-9), sample runs (Fig. 6), claims, sensitivity, reproducibility
-    sections = _set_sections(out_dir, fig_dir, sets, figures)
+    # what was found, the readings, sets (Figs. 7-9), sample runs (Fig. 6), claims,
+    # sensitivity, reproducibility
+    sections = [_verdict_section(out_dir, fig_dir, summary, figures),
+                _readings_section(out_dir, fig_dir, summary, figures)]
+    sections += _set_sections(out_dir, fig_dir, sets, figures)
     sections.append(_trajectory_section(out_dir, fig_dir, summary, figures))
-    sections.append(_claims_section(summary))
+    sections.append(_claims_section(out_dir, summary))
     sections.append(_sensitivity_section(out_dir, fig_dir, summary, figures))
     if sens is not None:
         sections.append(_sensitivity_claims_section(out_dir, fig_dir, sens, summary, figures))
     sections.append(_reproducibility_section(summary, out_dir))
 
-    title = "plumetrace report: Lochmatter & Martinoli (2008) reproduced"
+    title = report_title(summary)
     intro = _header_blocks(summary)
     html_path = out_dir / "report.html"
     md_path = out_dir / "report.md"

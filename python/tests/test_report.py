@@ -57,8 +57,34 @@ def _point(rng, runs, successes, value=None):
     else:
         m = 1.1 + rng.random()
         p["overhead"] = {"n": successes, "mean": m, "lo": m - 0.05, "hi": m + 0.05,
+                         "boot_lo": m - 0.03, "boot_hi": m + 0.04,
                          "median": m - 0.01, "q1": m - 0.04, "q3": m + 0.04}
     return p
+
+
+READINGS = [("default", True, None, {}),
+            ("plugin-published", False, "plugin-published.toml",
+             {"plume.amount": 1.0, "plume.preset": "lochmatter2008"})]
+
+
+def _failures(walls=9, timeouts=2, gave_up=1, upwind_wall=8):
+    """Failure statistics of three algorithms; `upwind_wall` of the 12 ends lie at x < 1 at a
+    wall, the others 3 m downwind of the source."""
+    algorithms, placed = [], 0
+    for alg, set_name, (w, t, g) in zip(("casting", "surge-spiral", "surge-cast"), "ADG",
+                                        ((walls - 2, timeouts, 0), (1, 0, gave_up), (1, 0, 0))):
+        ends = []
+        for k, outcome in enumerate(["wall"] * w + ["timeout"] * t + ["gave_up"] * g):
+            upwind = placed < upwind_wall and outcome == "wall"
+            placed += upwind
+            ends.append({"trial": k, "outcome": outcome, "x": 0.07 if upwind else 4.0,
+                         "y": 0.3, "closest_m": 0.35})
+        failed = w + t + g
+        algorithms.append({"algorithm": alg, "set": set_name, "runs": 20, "failed": failed,
+                           "walls": w, "timeouts": t, "gave_up": g, "examined": failed,
+                           "source_x": 1.0, "source_y": 0.0, "ends": ends,
+                           "closest_median_m": 0.35, "end_distance_median_m": 1.0})
+    return {"examined_max": 25, "algorithms": algorithms}
 
 
 def _trajectory(algorithm, set_name, states):
@@ -68,6 +94,12 @@ def _trajectory(algorithm, set_name, states):
     return {"algorithm": algorithm, "set": set_name, "trial": 7, "seed": 20080101, "x": xs,
             "y": ys, "state": [states[(i // 25) % len(states)] for i in range(n)],
             "odor": [int(abs(y) < 0.3) for y in ys], "outcome": "success", "overhead": 1.3}
+
+
+def _failed_trajectory(algorithm, set_name):
+    t = _trajectory(algorithm, set_name, ["surge", "spiral"])
+    t.update(outcome="wall", overhead=1.01, closest_m=0.35, trial=3)
+    return t
 
 
 def make_summary():
@@ -91,15 +123,31 @@ def make_summary():
     xs = [0.25 + 0.5 * i for i in range(32)]
     ys = [-1.75 + 0.5 * j for j in range(8)]
     fraction = [[max(0.0, 1.0 - abs(y) / 0.6) if x > 1 else 0.0 for x in xs] for y in ys]
+    readings = []
+    for k, (name, main, file, settings) in enumerate(READINGS):
+        verdicts = [VERDICTS[(i + k) % 3] for i in range(11)]
+        readings.append({
+            "name": name, "main": main, "file": file, "settings": settings,
+            "held": verdicts.count("holds"), "not_held": verdicts.count("does not hold"),
+            "unclear": verdicts.count("unclear"),
+            "claims": [{"id": i + 1, "text": CLAIM_TEXTS[i], "verdict": v, "margin": 0.1,
+                        "evidence": f"evidence {i + 1}: 12/20 vs 3/20 -> yes"}
+                       for i, v in enumerate(verdicts)],
+            "fixed": [dict(_point(rng, RUNS, rng.randint(2, RUNS)), algorithm=a, set=s)
+                      for a, s in (("casting", "A"), ("surge-spiral", "D"), ("surge-cast", "G"))],
+            "detection_map": {"x": xs, "y": ys, "fraction": fraction},
+            "success_radius": 0.185})
     return {
         "plumetrace_summary": 1, "version": "0.1.0",
         "generated_by": "plumetrace reproduce --runs 20 --out out/test",
-        "preset": "lochmatter2008", "seed": 20080101, "runs_per_point": RUNS,
+        "preset": "default", "seed": 20080101, "runs_per_point": RUNS,
         "total_runs": RUNS * sum(len(s[4]) for s in SETS), "elapsed_s": 12.5, "threads": 2,
         "sets": sets, "claims": claims,
         "sensitivity": {"variants": VARIANTS, "rows": rows},
         "trajectories": [_trajectory("casting", "A", ["upwind", "crosswind"]),
-                         _trajectory("surge-spiral", "D", ["surge", "spiral"])],
+                         _trajectory("surge-spiral", "D", ["surge", "spiral"]),
+                         _failed_trajectory("surge-spiral", "D")],
+        "readings": readings, "failures": _failures(),
         "trajectories_missing": ["surge-cast"],
         "detection_map": {"x": xs, "y": ys, "fraction": fraction},
         "arena": {"x_min": 0, "x_max": 16, "y_min": -2, "y_max": 2},
@@ -138,7 +186,9 @@ def built(tmp_path_factory):
 
 
 def expected_figures(with_sensitivity=True):
-    names = [f"set_{s[0]}.png" for s in SETS] + ["trajectories.png", "sensitivity.png"]
+    names = [f"set_{s[0]}.png" for s in SETS] + ["trajectories.png", "sensitivity.png",
+                                                  "failures.png", "readings_success.png",
+                                                  "readings_map.png"]
     return names + (["sensitivity_claims.png"] if with_sensitivity else [])
 
 
@@ -207,7 +257,8 @@ def test_html_has_every_section_and_set(built):
     for anchor in ["sets", "trajectories", "claims", "sensitivity", "sensitivity-claims",
                    "reproducibility"] + [f"set-{s[0]}" for s in SETS]:
         assert f'id="{anchor}"' in text, anchor
-    for field in ("plumetrace reproduce --runs 20 --out out/test", "lochmatter2008", "20080101"):
+    for field in ("plumetrace reproduce --runs 20 --out out/test", "plugin-published",
+                  "20080101"):
         assert field in text
     assert "surge-cast: no successful run" not in text  # only in the figure, not as html
     assert "No successful run at the fixed values for: surge-cast" in text
@@ -250,7 +301,8 @@ def test_sensitivity_claims_section_only_with_sensitivity_json(tmp_path):
     md_text = (tmp_path / "report.md").read_text(encoding="utf-8")
     assert 'id="sensitivity-claims"' in html_text
     assert "10 runs per point" in html_text
-    assert html_text.count('class="cell holds"') == sum(
+    matrix = html_text[html_text.index('id="sensitivity-claims"'):]
+    assert matrix.count('class="cell holds"') == sum(
         r["verdicts"].count("holds") for r in make_sensitivity()["rows"])
     assert "](figures/sensitivity_claims.png)" in md_text
 
@@ -258,7 +310,8 @@ def test_sensitivity_claims_section_only_with_sensitivity_json(tmp_path):
 def test_minimal_summary_without_optional_blocks_builds(tmp_path):
     summary = make_summary()
     for key in ("claims", "sensitivity", "trajectories", "trajectories_missing",
-                "detection_map", "arena", "source", "config_toml", "sweeps", "elapsed_s"):
+                "detection_map", "arena", "source", "config_toml", "sweeps", "elapsed_s",
+                "readings", "failures"):
         del summary[key]
     write_json(tmp_path / "summary.json", summary)
     written = report.build_report(tmp_path)
@@ -314,3 +367,108 @@ def test_wilson_interval_matches_known_values():
     assert lo == pytest.approx(0.1430, abs=1e-4)
     assert hi == pytest.approx(0.3741, abs=1e-4)
     assert report.wilson_interval(0, 0) == (None, None)
+
+
+def test_title_says_what_was_done_and_the_report_opens_with_the_verdict(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    held = [VERDICTS[i % 3] for i in range(11)].count("holds")
+    title = (f"Lochmatter &amp; Martinoli (2008), nine experiment sets re-run: {held} of 11 "
+             "claims hold under the default reading")
+    assert f"<h1>{title}</h1>" in text
+    assert "reproduced" not in text.lower().split("<body>")[1][:400]
+    first = re.search(r'<h2 id="([^"]+)"', text).group(1)
+    assert first == "verdict"
+    verdict = text[text.index('id="verdict"'):text.index('id="readings"')]
+    # each reading's counts, with the main one marked
+    for name, main, _, _ in READINGS:
+        assert name + (" (main)" if main else "") in verdict
+
+
+def test_verdict_table_quotes_the_paper_beside_a_column_per_reading(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    verdict = text[text.index('id="verdict"'):text.index('id="readings"')]
+    assert "virtually all 1350 runs succeeded" in verdict
+    assert "only configurations with \u03b2 &gt; 20\u00b0 resulted in acceptable" in verdict
+    header = re.search(r"<thead><tr><th>id</th><th>the paper says</th>(.*?)</tr></thead>",
+                       verdict).group(1)
+    assert re.findall(r"<th>([^<]*)</th>", header) == [
+        "default", "plugin-published", "what the data say (default)"]
+    # 11 claims x 2 readings verdict cells, coloured by verdict
+    assert len(re.findall(r'<td class="cell (holds|fails|unclear)"', verdict)) == 22
+    # the deciding figure without its "-> yes" tail
+    assert "evidence 1: 12/20 vs 3/20</td>" in verdict
+
+
+def test_failure_sentence_follows_the_numbers():
+    summary = {"failures": _failures(), "source": {"x": 1.0, "y": 0.0}}
+    sentence = report.failure_sentence(summary)
+    # 8 of the 12 failed runs end at a wall upwind of the source
+    assert sentence.startswith("Most failed runs (67%) end at a wall upwind of the source")
+    assert "12 of 60 runs at the paper's fixed values fail (20%)" in sentence
+    assert "9 at a wall, 2 by timeout, 1 giving up" in sentence
+    assert "0.35 m" in sentence
+    # other numbers, another sentence: most failed runs now end far downwind
+    summary["failures"] = _failures(upwind_wall=2)
+    other = report.failure_sentence(summary)
+    assert "end more than 1 m downwind of the source" in other
+    assert "(83%)" in other
+    summary["failures"] = {"algorithms": [dict(a, failed=0, walls=0, timeouts=0, gave_up=0,
+                                               ends=[]) for a in _failures()["algorithms"]]}
+    assert report.failure_sentence(summary) == ("None of the 60 runs at the paper's fixed values "
+                                                "failed.")
+    assert report.failure_sentence({}) is None
+
+
+def test_failed_runs_are_shown_next_to_successful_ones(built):
+    out, _ = built
+    panels = report._trajectory_panels(make_summary())
+    assert [(a, k, t is not None) for a, k, t in panels] == [
+        ("casting", "success", True), ("casting", "failure", False),
+        ("surge-spiral", "success", True), ("surge-spiral", "failure", True),
+        ("surge-cast", "success", False), ("surge-cast", "failure", False)]
+    text = (out / "report.html").read_text(encoding="utf-8")
+    section = text[text.index('id="trajectories"'):text.index('id="claims"')]
+    assert '<td class="fails">wall</td>' in section
+    assert '<td class="holds">success</td>' in section
+
+
+def test_overheads_show_the_bootstrap_interval_when_the_summary_has_it():
+    p = {"runs": 10, "successes": 5, "overhead": {"n": 5, "mean": 1.02, "lo": 0.97, "hi": 1.07,
+                                                  "boot_lo": 1.0, "boot_hi": 1.05}}
+    point = report.Point.from_json(p)
+    assert (point.oh_lo, point.oh_hi) == (1.0, 1.05)
+    assert report.fmt_overhead(point) == "1.02 [1.00, 1.05]"
+    del p["overhead"]["boot_lo"], p["overhead"]["boot_hi"]
+    assert report.Point.from_json(p).oh_lo == 0.97  # an older summary: the t interval
+
+
+def test_docs_are_linked_relative_to_the_report_into_the_repository(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    hrefs = set(re.findall(r'<a href="([^"#][^"]*)">', text))
+    assert hrefs, "no document links"
+    for doc in ("docs/fidelity.md", "docs/model.md", "docs/claims.md"):
+        href = next(h for h in hrefs if h.endswith(doc))
+        assert not href.startswith("/")
+        assert (out / href).resolve() == (report.REPO_ROOT / doc).resolve()
+    for href in hrefs:
+        assert (out / href).resolve().is_relative_to(report.REPO_ROOT), href
+
+
+def test_readings_section_compares_settings_rates_and_maps(built):
+    out, _ = built
+    text = (out / "report.html").read_text(encoding="utf-8")
+    section = text[text.index('id="readings"'):text.index('id="sets"')]
+    assert "plume.amount" in section and "(default)" in section
+    assert section.count("/20 = ") == 3 * len(READINGS)
+    assert "Wilson 95%" in section and "bootstrap 95%" in section
+
+
+def test_summary_with_a_bad_reading_names_its_path(tmp_path):
+    summary = make_summary()
+    summary["readings"][1]["fixed"][0]["runs"] = "x"
+    write_json(tmp_path / "summary.json", summary)
+    with pytest.raises(report.ReportError, match=r"readings\[1\]\.fixed\[0\]\.runs"):
+        report.build_report(tmp_path)

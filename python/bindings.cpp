@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -301,7 +302,8 @@ py::dict point_dict(const pt::PointStats& p) {
 // the experiment sets of a folder under overrides, in memory, and their claims; Ctrl-C (any
 // Python signal handler that raises) stops it between runs and raises here
 py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, int runs,
-                       std::uint64_t seed, int threads, const std::vector<std::string>& sets) {
+                       std::uint64_t seed, int threads, const std::vector<std::string>& sets,
+                       const std::vector<int>& claim_ids) {
   pt::CalibrationOptions options;
   options.sets_dir = sets_dir;
   options.sets = sets;
@@ -333,6 +335,11 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
 
   py::list claims;
   for (const pt::ClaimResult& c : result.claims) {
+    // why: a calibration search must not see its held-out claims, so they never leave C++
+    if (!claim_ids.empty() &&
+        std::find(claim_ids.begin(), claim_ids.end(), c.id) == claim_ids.end()) {
+      continue;
+    }
     py::list parts;
     for (const pt::ClaimPart& part : c.parts) {
       py::dict pd;
@@ -403,9 +410,10 @@ PYBIND11_MODULE(_core, m) {
         py::arg("share_plumes"), py::arg("controller_factory"));
   m.def("evaluate_sets", &evaluate_sets, py::arg("sets_dir"), py::arg("overrides"), py::arg("runs"),
         py::arg("seed"), py::arg("threads"), py::arg("sets") = pt::experiment_set_names(),
+        py::arg("claims") = std::vector<int>{},
         "the experiment sets A..I of a folder under overrides (dict of dotted keys), in memory: "
         "runs per value (0: the files'), master seed (0: the files'); per-set statistics and "
-        "claims 1-11 with their verdicts, margins and parts");
+        "the claims (ids in `claims`; empty: 1-11) with their verdicts, margins and parts");
 
   // the statistics of the report (SPEC section 7)
   m.def(

@@ -259,6 +259,7 @@ def run_search(study, out_dir, progress=False):
                 raise StudyError(f"{failures} candidates in a row were refused; last: {e}") from e
             continue
         except BaseException:
+            trial.set_user_attr("interrupted", True)
             opt.tell(trial, state=optuna.trial.TrialState.FAIL)
             raise
         failures = 0

@@ -139,7 +139,7 @@ def render(study, opt, validation, evaluated_now=0):
         f"{len(timed)} candidates were simulated at about {rate:.0f} candidates per hour "
         f"({evaluated_now} in the last session). Claims {', '.join(map(str, HELD_OUT_CLAIMS))} "
         "are held out: they never entered the score. The best "
-        f"{len(cands)} distinct candidates were rerun at {v['runs']} runs per value with a fresh "
+        f"{len(cands)} distinct candidate{'s were' if len(cands) != 1 else ' was'} rerun at {v['runs']} runs per value with a fresh "
         f"master seed ({v['seed']}); the best reading is the one with the highest score there, "
         "and only there were the held-out claims evaluated.</p>")
 

@@ -2,7 +2,6 @@
 without repeating trials, scores only the calibration claims and refuses bad study files."""
 
 import json
-import math
 import os
 import subprocess
 import sys

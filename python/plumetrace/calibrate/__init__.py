@@ -9,7 +9,9 @@ claims; writes DIR/study.sqlite (resumable), DIR/validation.json, DIR/best.toml 
 DIR/calibration.html. Formats and the score: docs/calibration.md.
 """
 
-from .study import CALIBRATION_CLAIMS, HELD_OUT_CLAIMS, StudyError, load_study  # noqa: F401
+from .study import CALIBRATION_CLAIMS, HELD_OUT_CLAIMS, StudyError, load_study
+
+__all__ = ["CALIBRATION_CLAIMS", "HELD_OUT_CLAIMS", "StudyError", "load_study", "main"]
 
 
 def main(argv=None):

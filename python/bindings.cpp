@@ -5,6 +5,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -12,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "plumetrace/calibration.hpp"
 #include "plumetrace/campaign.hpp"
+#include "plumetrace/claims.hpp"
 #include "plumetrace/controller.hpp"
 #include "plumetrace/controllers.hpp"
 #include "plumetrace/io.hpp"
@@ -266,6 +270,113 @@ py::dict sweep(const std::string& path, const Overrides& overrides, int runs, in
   return out;
 }
 
+// a config value from Python: bool, int, float or str (bool before int: True is an int too)
+pt::ConfigValue config_value(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) return value.cast<std::int64_t>();
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  throw pt::ConfigError("value " + py::repr(value).cast<std::string>() +
+                        " is not a bool, int, float or str");
+}
+
+// one point's statistics as a dict
+py::dict point_dict(const pt::PointStats& p) {
+  py::dict d;
+  d["runs"] = p.runs;
+  d["successes"] = p.successes;
+  d["walls"] = p.walls;
+  d["timeouts"] = p.timeouts;
+  d["gave_up"] = p.gave_up;
+  d["success_rate"] = p.success_rate;
+  d["success_ci"] = py::make_tuple(p.success_ci.lo, p.success_ci.hi);
+  d["overhead_mean"] = p.overhead.mean;
+  d["overhead_ci"] = py::make_tuple(p.overhead.lo, p.overhead.hi);
+  d["overhead_sd"] = p.overhead.stddev;
+  d["overhead_n"] = p.overhead.n;
+  d["mean_time"] = p.mean_time;
+  d["mean_losses"] = p.mean_losses;
+  return d;
+}
+
+// the experiment sets of a folder under overrides, in memory, and their claims; Ctrl-C (any
+// Python signal handler that raises) stops it between runs and raises here
+py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, int runs,
+                       std::uint64_t seed, int threads, const std::vector<std::string>& sets,
+                       const std::vector<int>& claim_ids) {
+  pt::CalibrationOptions options;
+  options.sets_dir = sets_dir;
+  options.sets = sets;
+  options.runs = runs;
+  options.seed = seed;
+  options.threads = threads;
+  for (const auto& [key, value] : overrides) {
+    options.overrides.push_back({py::str(key).cast<std::string>(), config_value(value), false,
+                                 "Python", pt::Layer::kCommandLine});
+  }
+  std::atomic<bool> stop{false};
+  std::unique_ptr<py::error_already_set> signal;
+  options.stop = &stop;
+  options.on_progress = [&](const pt::Progress&) {
+    if (stop) return;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      signal = std::make_unique<py::error_already_set>();
+      stop = true;
+    }
+  };
+  pt::CalibrationResult result;
+  {
+    py::gil_scoped_release release;
+    result = pt::evaluate_sets(options);
+  }
+  if (signal) throw std::move(*signal);
+  if (result.interrupted) throw std::runtime_error("evaluate_sets: stopped before all runs");
+
+  py::list claims;
+  for (const pt::ClaimResult& c : result.claims) {
+    // why: a calibration search must not see its held-out claims, so they never leave C++
+    if (!claim_ids.empty() &&
+        std::find(claim_ids.begin(), claim_ids.end(), c.id) == claim_ids.end()) {
+      continue;
+    }
+    py::list parts;
+    for (const pt::ClaimPart& part : c.parts) {
+      py::dict pd;
+      pd["text"] = part.text;
+      pd["support"] = std::string(pt::verdict_name(part.support));
+      pd["margin"] = part.margin;
+      parts.append(pd);
+    }
+    py::dict cd;
+    cd["id"] = c.id;
+    cd["text"] = c.text;
+    cd["verdict"] = std::string(pt::verdict_name(c.verdict));
+    cd["margin"] = c.margin;
+    cd["evidence"] = c.evidence;
+    cd["parts"] = parts;
+    claims.append(cd);
+  }
+  py::dict set_dicts;
+  for (const auto& [name, st] : result.sets) {
+    py::list points;
+    for (const pt::PointStats& p : st.points) points.append(point_dict(p));
+    py::dict sd;
+    sd["algorithm"] = st.algorithm;
+    sd["key"] = st.key;
+    sd["values"] = st.values;
+    sd["fixed_index"] = st.fixed_index;
+    sd["points"] = points;
+    set_dicts[py::str(name)] = sd;
+  }
+  py::dict out;
+  out["claims"] = claims;
+  out["sets"] = set_dicts;
+  out["runs"] = result.runs;
+  out["elapsed"] = result.elapsed;
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -297,6 +408,12 @@ PYBIND11_MODULE(_core, m) {
         py::arg("view") = std::nullopt);
   m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"), py::arg("threads"),
         py::arg("share_plumes"), py::arg("controller_factory"));
+  m.def("evaluate_sets", &evaluate_sets, py::arg("sets_dir"), py::arg("overrides"), py::arg("runs"),
+        py::arg("seed"), py::arg("threads"), py::arg("sets") = pt::experiment_set_names(),
+        py::arg("claims") = std::vector<int>{},
+        "the experiment sets A..I of a folder under overrides (dict of dotted keys), in memory: "
+        "runs per value (0: the files'), master seed (0: the files'); per-set statistics and "
+        "the claims (ids in `claims`; empty: 1-11) with their verdicts, margins and parts");
 
   // the statistics of the report (SPEC section 7)
   m.def(

@@ -8,6 +8,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev
   libgtest-dev libbenchmark-dev
   python3 python3-dev pybind11-dev python3-matplotlib python3-numpy python3-pytest
+  python3-optuna python3-sklearn
   libopenmpi-dev openmpi-bin
   chromium
 )

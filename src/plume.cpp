@@ -160,6 +160,8 @@ PlumeParams plume_preset(PlumePreset preset) {
   PlumeParams p;
   p.preset = preset;
   if (preset == PlumePreset::kPaperLiteral) {
+    p.amount = 8.3e9;
+    p.sigma_p = 0.1;
     p.release_shape = ReleaseShape::kDisc;
     p.noise_mode = NoiseMode::kPerStep;
     p.lifetime = Lifetime::kLeaveArena;

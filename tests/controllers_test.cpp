@@ -405,6 +405,7 @@ TEST(SurgeSpiral, SpiralGapMatchesDGapAfterTheFirstTurn) {
   for (double d_gap : {0.222, 0.111, 0.333}) {
     SurgeSpiralParams params;
     params.d_gap = d_gap;
+    params.start_radius = 0.0;  // the spiral's centre is where the robot lost the plume
     SurgeSpiral spiral(params, Rng(3));
     ScriptedWorld world(never);
     const auto log = world.run(spiral, 9000);
@@ -474,8 +475,8 @@ TEST(SurgeSpiral, StartRadiusStartsWithTheSpiralsCurvatureThere) {
 
 TEST(SurgeSpiral, ZeroStartRadiusFollowsTheSpiralFromItsCentre) {
   // r0 = 0: the commands of the spiral from its centre, curvature 2 / b first
-  const SurgeSpiralParams params;
-  ASSERT_EQ(params.start_radius, 0.0);
+  SurgeSpiralParams params;
+  params.start_radius = 0.0;
   const double b = params.d_gap / (2.0 * kPi);
   SurgeSpiral spiral(params, Rng(3));
   ScriptedWorld world(never);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "plumetrace/geometry.hpp"
@@ -22,8 +23,8 @@ ProbeOptions corridor_options(std::uint64_t seed) {
   return options;
 }
 
-// Cross-sections 1, 7 and 14.5 m downwind of the source: on the axis, well inside the corridor,
-// and beyond its edge at about 0.55 m (SPEC section 2).
+// Cross-sections 1, 7 and 14.5 m downwind of the source: on the axis, at 0.45 m (inside the
+// printed-amount corridor, outside the default plume) and beyond both (docs/fidelity.md).
 std::vector<Vec3> cross_sections() {
   std::vector<Vec3> points;
   for (const double x : {2.0, 8.0, 15.5}) {
@@ -32,10 +33,20 @@ std::vector<Vec3> cross_sections() {
   return points;
 }
 
-TEST(Probe, DefaultPlumeIsASteadyCorridorWithSharpEdges) {
-  const Scenario scenario;
+// The plume of the plugin-published reading: the printed amount 8.3e9 on the Gaussian kernel.
+Scenario printed_amount_scenario() {
+  Scenario s;
+  s.plume.amount = 8.3e9;
+  s.plume.sigma_p = 0.1;
+  s.plume.kernel = Kernel::kGaussian;
+  s.wind.velocity = {1.0, 0.0, 0.0};
+  s.odor.height = 0.0;
+  return s;
+}
+
+TEST(Probe, PrintedAmountPlumeIsASteadyCorridorWithSharpEdges) {
   const std::vector<Vec3> points = cross_sections();
-  const auto results = probe_plume(scenario, points, corridor_options(1));
+  const auto results = probe_plume(printed_amount_scenario(), points, corridor_options(1));
   ASSERT_EQ(results.size(), points.size());
   for (const ProbeResult& r : results) {
     EXPECT_EQ(r.samples, 100);
@@ -46,6 +57,30 @@ TEST(Probe, DefaultPlumeIsASteadyCorridorWithSharpEdges) {
     } else {
       EXPECT_LE(r.detect_fraction, 0.05)
           << "x " << r.point.x << " y " << r.point.y << " mean " << r.mean_concentration;
+    }
+  }
+}
+
+TEST(Probe, DefaultPlumeIsANarrowIntermittentBandEndingNearTheRobotStart) {
+  const Scenario scenario;
+  const std::vector<Vec3> points = cross_sections();
+  const auto results = probe_plume(scenario, points, corridor_options(1));
+  ASSERT_EQ(results.size(), points.size());
+  for (const ProbeResult& r : results) {
+    EXPECT_EQ(r.samples, 100);
+    const std::string where = "x " + std::to_string(r.point.x) + " y " +
+                              std::to_string(r.point.y) + " mean " +
+                              std::to_string(r.mean_concentration);
+    if (r.point.y != 0.0) {
+      // a single filament of amount 1 is below threshold: nothing 0.45 m off the axis
+      EXPECT_LE(r.detect_fraction, 0.05) << where;
+    } else if (r.point.x < 10.0) {
+      // on the axis odor comes and goes: neither a steady corridor nor empty
+      EXPECT_GE(r.detect_fraction, 0.1) << where;
+      EXPECT_LE(r.detect_fraction, 0.8) << where;
+    } else {
+      // the ring's 16 s at 0.9 m/s end the plume about 15.4 m from the arena's upwind wall
+      EXPECT_LE(r.detect_fraction, 0.3) << where;
     }
   }
 }

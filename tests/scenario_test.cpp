@@ -157,7 +157,7 @@ TEST(Scenario, InvalidValuesNameTheKeyAndTheAllowedRange) {
       {"robot.wheel_speed=-1", "robot.wheel_speed: must be a number > 0"},
       {"robot.radius=0", "robot.radius: must be a number > 0"},
       {"source.radius=0", "source.radius: must be a number > 0"},
-      {"supervisor.success_radius=0", "supervisor.success_radius: must be a number > 0"},
+      {"supervisor.success_radius=-0.1", "supervisor.success_radius: must be a number >= 0"},
       {"odor.threshold=0", "odor.threshold: must be a number > 0"},
       {"plume.capacity=0", "plume.capacity: must be an integer >= 1"},
       {"plume.capacity=1.5", "plume.capacity: must be an integer >= 1"},
@@ -187,7 +187,10 @@ TEST(Scenario, RelationsBetweenKeysAreChecked) {
 }
 
 TEST(Scenario, ZeroSuccessRadiusNeedsASolidSource) {
-  const std::string msg = error_of_override("supervisor.success_radius=0");
+  const std::string msg = config_error([] {
+    build_scenario(
+        {parse_override("source.solid_radius=0"), parse_override("supervisor.success_radius=0")});
+  });
   EXPECT_NE(msg.find("source.solid_radius"), std::string::npos) << msg;
   const Scenario s = build_scenario(
       {parse_override("source.solid_radius=0.05"), parse_override("supervisor.success_radius=0")});
@@ -201,12 +204,21 @@ TEST(Scenario, ZeroSuccessRadiusNeedsASolidSource) {
   EXPECT_NE(inside.find("source.solid_radius"), std::string::npos) << inside;
 }
 
-TEST(Scenario, NewUnknownsDefaultToTheModelBeforeThem) {
+TEST(Scenario, DefaultsAreTheEvidencedReading) {
+  // docs/fidelity.md, "Which reading won": each value below has a source there
   const Scenario s;
-  EXPECT_EQ(s.source.solid_radius, 0.0);
+  EXPECT_EQ(s.plume.amount, 1.0);
+  EXPECT_EQ(s.plume.sigma_p, 0.02);
+  EXPECT_EQ(s.plume.kernel, Kernel::kPrinted);
+  EXPECT_EQ(s.plume.noise_mode, NoiseMode::kVelocity);
+  EXPECT_EQ(s.plume.release_shape, ReleaseShape::kBall);
+  EXPECT_EQ(s.wind.velocity.x, 0.9);
+  EXPECT_EQ(s.odor.height, 0.02);
+  EXPECT_EQ(s.supervisor.success_radius, 0.185);
+  EXPECT_EQ(s.source.solid_radius, 0.05);
   EXPECT_EQ(s.wind_sensor.samples, 1);
   EXPECT_EQ(s.wind_sensor.sigma_a_scale, 1.0);
-  EXPECT_EQ(s.controller.surge_spiral.start_radius, 0.0);
+  EXPECT_EQ(s.controller.surge_spiral.start_radius, 0.049);
   EXPECT_EQ(s.controller.casting.reacquire_side, ReacquireSide::kAlternate);
   EXPECT_EQ(format_value(get_field(s, "casting.reacquire_side")), "'alternate'");
 }

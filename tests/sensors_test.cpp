@@ -269,7 +269,9 @@ TEST(WindSensor, ClassDrawsTheSameNoiseAsTheFunction) {
 // A default plume after some seconds, so that concentrations vary over the probed points.
 Plume warm_plume() {
   const ConstantWind wind({1.0, 0.0, 0.0});
-  Plume plume(PlumeParams{}, SourceParams{}, kDt, 16.0, 21);
+  PlumeParams params;
+  params.amount = 8.3e9;  // the printed amount: a dense plume far above threshold near its axis
+  Plume plume(params, SourceParams{}, kDt, 16.0, 21);
   for (int k = 0; k < 300; ++k) plume.step(wind, k * kDt);
   return plume;
 }
@@ -278,7 +280,7 @@ TEST(OdorSensor, SamplesPlumeConcentrationAtRobotAndSensorHeight) {
   const Plume plume = warm_plume();
   OdorSensorParams params;
   EXPECT_EQ(params.threshold, 100.0);
-  EXPECT_EQ(params.height, 0.0);
+  EXPECT_EQ(params.height, 0.02);
   for (const double height : {0.0, 0.05, -0.1}) {
     params.height = height;
     for (const Pose& pose :

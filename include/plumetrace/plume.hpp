@@ -45,11 +45,13 @@ struct SourceParams {
   /// Radius of the source (m); filaments are released within it.
   double radius = 0.12;
   /// Radius of a solid cylinder at the centre that the robot cannot enter (m); 0: none.
-  /// The plume does not see it.
-  double solid_radius = 0.0;
+  /// The plume does not see it. why: the 2008 wind-tunnel world's collidable source cylinder
+  /// (docs/fidelity.md, unknown 7).
+  double solid_radius = 0.05;
 };
 
-/// Every row of SPEC section 2's preset table; defaults are the `lochmatter2008` preset.
+/// Every row of the plume's preset table (docs/model.md); defaults are the `lochmatter2008`
+/// preset, the plume of the default reading (docs/fidelity.md).
 struct PlumeParams {
   /// Preset the rows below started from.
   PlumePreset preset = PlumePreset::kLochmatter2008;
@@ -59,20 +61,22 @@ struct PlumeParams {
   ReleaseShape release_shape = ReleaseShape::kBall;
   /// Width of a new filament (m).
   double initial_width = 0.10;
-  /// Amount of odor in one filament (molecules).
-  double amount = 8.3e9;
+  /// Amount of odor in one filament (molecules). why: 1, not the printed 8.3e9: the oldest
+  /// public copy of the plugin never applies the configured amount (docs/fidelity.md, unknown 1).
+  double amount = 1.0;
   /// Scaling of the random walk with dt.
   NoiseMode noise_mode = NoiseMode::kVelocity;
-  /// Random-walk intensity (m/s, m or m/sqrt(s) depending on noise_mode).
-  double sigma_p = 0.1;
+  /// Random-walk intensity (m/s, m or m/sqrt(s) depending on noise_mode). why: the plugin
+  /// copies' 0.02 (docs/fidelity.md, unknown 3).
+  double sigma_p = 0.02;
   /// Width growth constant per step (m^2): w += gamma / (2 w).
   double gamma = 4e-7;
   /// How filaments leave.
   Lifetime lifetime = Lifetime::kRing;
   /// Ring-buffer size (filaments), used with Lifetime::kRing.
   int capacity = 1600;
-  /// Concentration kernel.
-  Kernel kernel = Kernel::kGaussian;
+  /// Concentration kernel. why: paper eq. 5 as printed (docs/fidelity.md, unknown 4).
+  Kernel kernel = Kernel::kPrinted;
   /// Filaments farther than this from a query point contribute nothing (m); may be infinite.
   double cutoff = 1.0;
 };

@@ -292,3 +292,43 @@ def test_the_command_exits_with_status_2_on_a_bad_study_file(tmp_path):
                        capture_output=True, text=True, env=env, cwd=tmp_path)
     assert r.returncode == 2
     assert "unknown key 'colour'" in r.stderr
+
+
+# --- a search restricted to evidenced values ----------------------------------------------------
+
+def test_evidenced_only_offers_each_unknown_its_evidenced_values_alone(tmp_path):
+    unknowns = UNKNOWNS + """[[unknown.evidence]]
+value = 0.185
+source = "paper"
+says = "printed"
+[[unknown.evidence]]
+value = 0.115
+source = "robot"
+says = "body plus half a wheel base"
+[[unknown.evidence]]
+value = 0.185
+source = "plugin"
+says = "the same value again"
+"""
+    study = study_file(tmp_path, f'sets_dir = "{SETS}"\nevidenced_only = true\n', unknowns)
+    s = calibrate.load_study(study)
+    by_name = {u.name: u for u in s.unknowns}
+    # a range becomes the list of evidenced values, once each, in the file's order
+    assert by_name["success_radius"].choices == [0.185, 0.115]
+    assert by_name["success_radius"].low is None and by_name["success_radius"].high is None
+    # the printed 8.3e9 has no evidence entry here, so only 1 is offered
+    assert by_name["amount"].choices == [1.0]
+    # the unrestricted study keeps every candidate
+    plain = calibrate.load_study(study_file(tmp_path, f'sets_dir = "{SETS}"\n', unknowns))
+    assert {u.name: u.choices for u in plain.unknowns}["amount"] == [8.3e9, 1.0]
+
+
+@pytest.mark.parametrize("body, says", [
+    ("evidenced_only = true\n", "unknown 'success_radius' has no [[unknown.evidence]]"),
+    ('evidenced_only = "yes"\n', "'evidenced_only' must be true or false"),
+])
+def test_evidenced_only_refuses_what_it_cannot_restrict(tmp_path, body, says):
+    study = study_file(tmp_path, f'sets_dir = "{SETS}"\n' + body)
+    with pytest.raises(calibrate.StudyError) as e:
+        calibrate.load_study(study)
+    assert says in str(e.value)

@@ -11,8 +11,9 @@ struct SurgeSpiralParams {
   /// Path length without odor after which the plume is lost (m).
   double d_lost = 0.614;
   /// Radius (m) on the spiral r = b theta at which the robot starts: it follows the curvature
-  /// profile from theta0 = start_radius / b on (0: from the centre).
-  double start_radius = 0.0;
+  /// profile from theta0 = start_radius / b on (0: from the centre). why: 0.049, the Khepera III
+  /// toolbox's spiral (docs/fidelity.md, unknown 10).
+  double start_radius = 0.049;
 };
 
 /// Path length (m) of the Archimedean spiral r = b theta from its centre to angle theta (rad).

@@ -6,7 +6,7 @@ The formats are described in docs/calibration.md.
 
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 SET_NAMES = ["A", "B", "C", "D", "E", "F", "G", "H", "I"]
@@ -177,7 +177,8 @@ def read_unknowns(path):
 
 
 STUDY_KEYS = {"name", "unknowns", "search", "sets_dir", "sets", "runs", "seed", "trials",
-              "threads", "startup_trials", "target", "truth", "fixed", "validation"}
+              "threads", "startup_trials", "target", "truth", "fixed", "validation",
+              "evidenced_only"}
 VALIDATION_KEYS = {"top", "runs", "seed"}
 
 
@@ -213,6 +214,23 @@ def load_study(path, check_keys=None):
             raise StudyError(f"{where}: 'search' names unknown '{n}', which '{unknowns_path}' "
                              f"does not declare (it has: {', '.join(by_name)})")
     searched = [u for u in all_unknowns if u.name in search]
+    evidenced_only = doc.get("evidenced_only", False)
+    if not isinstance(evidenced_only, bool):
+        raise StudyError(f"{where}: 'evidenced_only' must be true or false")
+    if evidenced_only:
+        # why: the default reading may hold only values with evidence (docs/fidelity.md), so
+        # this search offers each unknown its evidenced values alone
+        restricted = []
+        for u in searched:
+            values = []
+            for e in u.evidence:
+                if not any(same_value(e.value, v) for v in values):
+                    values.append(e.value)
+            if not values:
+                raise StudyError(f"{where}: 'evidenced_only': unknown '{u.name}' has no "
+                                 f"[[unknown.evidence]] entry in '{unknowns_path}'")
+            restricted.append(replace(u, choices=values, low=None, high=None))
+        searched = restricted
     keys = [u.key for u in searched]
     for k in set(keys):
         if keys.count(k) > 1:

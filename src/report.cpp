@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -260,7 +261,7 @@ json claim_json(const ClaimResult& c) {
 // between readings whose plume and sensor height are the same)
 json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
                   const std::vector<RunRow>& rows, int runs_override,
-                  std::map<std::string, json>& maps);
+                  const std::set<std::string>& compared_keys, std::map<std::string, json>& maps);
 
 }  // namespace
 
@@ -282,7 +283,7 @@ namespace {
 
 json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
                   const std::vector<RunRow>& rows, int runs_override,
-                  std::map<std::string, json>& maps) {
+                  const std::set<std::string>& compared_keys, std::map<std::string, json>& maps) {
   json settings = json::object();
   for (const auto& s : reading.settings) settings[s.key] = value_to_json(s.value);
   std::map<std::string, SetStats> by_name;
@@ -327,6 +328,10 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
     if (!maps.count(key)) maps[key] = detection_map(sc, a->def.seed);
     doc["detection_map"] = maps[key];
     doc["success_radius"] = sc.supervisor.success_radius;
+    // the value every compared key takes under this reading, preset or built-in default
+    json values = json::object();
+    for (const auto& k : compared_keys) values[k] = value_to_json(get_field(sc, k));
+    doc["values"] = values;
   }
   return doc;
 }
@@ -446,10 +451,14 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
 
   // each reading's claims, fixed values and detection map; the main one's map is shared
   std::map<std::string, json> maps;
+  std::set<std::string> compared_keys;
+  for (const auto& r : info.readings) {
+    for (const auto& s : r.settings) compared_keys.insert(s.key);
+  }
   json readings = json::array();
   for (std::size_t i = 0; i < info.readings.size(); ++i) {
-    readings.push_back(
-        reading_json(info.readings[i], i == 0, sweeps, rows, info.runs_override, maps));
+    readings.push_back(reading_json(info.readings[i], i == 0, sweeps, rows, info.runs_override,
+                                    compared_keys, maps));
   }
   doc["readings"] = readings;
   if (const ExpandedSweep* a = find(sweeps, "A")) {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "plumetrace/scenario.hpp"
 #include "plumetrace/store.hpp"
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
@@ -206,6 +207,11 @@ TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
   EXPECT_EQ(summary["readings"][0]["name"], "default");
   EXPECT_EQ(summary["readings"][1]["name"], "plugin-published");
   EXPECT_EQ(summary["readings"][1]["settings"]["plume.amount"], 1.0);
+  // every key a preset sets, with the value each reading's runs used: the default column is
+  // the built-in value, the preset's column its own
+  EXPECT_EQ(summary["readings"][0]["values"]["plume.sigma_p"], Scenario{}.plume.sigma_p);
+  EXPECT_EQ(summary["readings"][1]["values"]["plume.sigma_p"], 0.1);
+  EXPECT_EQ(summary["readings"][0]["values"].size(), summary["readings"][1]["settings"].size());
   for (const auto& r : summary["readings"]) {
     EXPECT_EQ(r["claims"].size(), 11u);
     EXPECT_EQ(r["fixed"].size(), 3u);

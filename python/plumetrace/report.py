@@ -1815,13 +1815,20 @@ def _readings_section(out_dir: Path, fig_dir: Path, summary: dict, written: list
     blocks = [Para(["Each reading is a preset file (", ("code", "experiments/lochmatter2008/"
                                                                 "presets/NAME.toml"),
                     ") applied on top of every experiment set; ", ("code", "default"),
-                    " adds nothing to the sets' own scenario. Why each value: ",
-                    _doc_link(out_dir, "docs/fidelity.md"), "."])]
+                    " adds nothing to the sets' own scenario (its column shows the built-in "
+                    "values). Why each value: ", _doc_link(out_dir, "docs/fidelity.md"), "."])]
+
+    def value(r, k):
+        # the value the reading's runs used; older summaries only have the preset's settings
+        if k in (r.get("values") or {}):
+            return _setting_text(r["values"][k])
+        if k in (r.get("settings") or {}):
+            return _setting_text(r["settings"][k])
+        return "(default)"
+
     if keys:
         blocks.append(Table(header=["key"] + [r.get("name") for r in readings], rows=[
-            [Cell(k, cls="mono")] + [Cell(_setting_text((r.get("settings") or {}).get(k))
-                                          if k in (r.get("settings") or {}) else "(default)",
-                                          cls="mono") for r in readings]
+            [Cell(k, cls="mono")] + [Cell(value(r, k), cls="mono") for r in readings]
             for k in keys]))
     path = readings_success_figure(readings, fig_dir / "readings_success.png")
     written.append(path)

@@ -137,6 +137,10 @@ def make_summary():
                       for a, s in (("casting", "A"), ("surge-spiral", "D"), ("surge-cast", "G"))],
             "detection_map": {"x": xs, "y": ys, "fraction": fraction},
             "success_radius": 0.185})
+        if name == "default":
+            # the built-in value of a key the other reading sets; "plume.preset" left out to
+            # show a summary without it
+            readings[-1]["values"] = {"plume.amount": 0.75}
     return {
         "plumetrace_summary": 1, "version": "0.1.0",
         "generated_by": "plumetrace reproduce --runs 20 --out out/test",
@@ -462,6 +466,10 @@ def test_readings_section_compares_settings_rates_and_maps(built):
     text = (out / "report.html").read_text(encoding="utf-8")
     section = text[text.index('id="readings"'):text.index('id="sets"')]
     assert "plume.amount" in section and "(default)" in section
+    # the default column shows the value its runs used where the summary has it
+    row = section[section.index("plume.amount"):]
+    row = row[:row.index("</tr>")]
+    assert "0.75" in row and "(default)" not in row
     assert section.count("/20 = ") == 3 * len(READINGS)
     assert "Wilson 95%" in section and "bootstrap 95%" in section
 

@@ -476,6 +476,7 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
                      {"y", s.source.center.y},
                      {"radius", s.source.radius},
                      {"success_radius", s.supervisor.success_radius}};
+    doc["wind"] = {{"vx", s.wind.velocity.x}, {"vy", s.wind.velocity.y}};
   }
   // the main reading's sweeps (the other readings' are the same files with their settings)
   json defs = json::array();

@@ -712,6 +712,17 @@ def _state_palette(states: Iterable[str]) -> dict:
     return palette
 
 
+def _wind_text(summary: dict) -> str:
+    """The main reading's wind as the figures state it; older summaries do not carry it."""
+    wind = summary.get("wind") or {}
+    vx, vy = wind.get("vx"), wind.get("vy")
+    if not _is_number(vx):
+        return "(wind along +x)"
+    if _is_number(vy) and vy != 0.0:
+        return f"(wind {vx:g}, {vy:g} m/s)"
+    return f"(wind {vx:g} m/s along +x)"
+
+
 def _trajectory_panels(summary: dict) -> list:
     """(algorithm, "success" or "failure", trajectory or None): per algorithm in the paper's
     order (then any other), a successful run and a failed one."""
@@ -786,7 +797,7 @@ def trajectory_figure(summary: dict, path: Path) -> Path:
         ax.set_aspect("equal")
         ax.set_ylabel("y (m)")
         ax.tick_params(labelsize=8)
-    axes[-1].set_xlabel("x (m), downwind \u2192 (wind 1 m/s along +x)")
+    axes[-1].set_xlabel("x (m), downwind \u2192 " + _wind_text(summary))
     if mesh is not None:
         cbar = fig.colorbar(mesh, ax=list(axes), shrink=0.6, pad=0.01)
         cbar.set_label("fraction of instants with odor", fontsize=8)

@@ -480,3 +480,9 @@ def test_summary_with_a_bad_reading_names_its_path(tmp_path):
     write_json(tmp_path / "summary.json", summary)
     with pytest.raises(report.ReportError, match=r"readings\[1\]\.fixed\[0\]\.runs"):
         report.build_report(tmp_path)
+
+
+def test_trajectory_axis_states_the_summary_wind():
+    assert report._wind_text({"wind": {"vx": 0.9, "vy": 0.0}}) == "(wind 0.9 m/s along +x)"
+    assert report._wind_text({"wind": {"vx": 1.0, "vy": 0.2}}) == "(wind 1, 0.2 m/s)"
+    assert report._wind_text({}) == "(wind along +x)"

@@ -415,7 +415,7 @@ PYBIND11_MODULE(_core, m) {
         "runs per value (0: the files'), master seed (0: the files'); per-set statistics and "
         "the claims (ids in `claims`; empty: 1-11) with their verdicts, margins and parts");
 
-  // the statistics of the report (SPEC section 7)
+  // the statistics of the report (docs/experiments.md)
   m.def(
       "wilson_interval",
       [](std::int64_t k, std::int64_t n) {

@@ -23,7 +23,8 @@ namespace {
 
 // the kernel's amount over w^3, without the exponential
 double kernel_scale(const PlumeParams& params) {
-  // why: the plugin normalises the 3-D Gaussian and squares the distance (SPEC section 2)
+  // why: the plugin normalises the 3-D Gaussian and squares the distance
+  // (docs/model.md section 4.6)
   static const double kNorm = std::sqrt(8.0 * kPi * kPi * kPi);
   return params.kernel == Kernel::kGaussian ? params.amount / kNorm : params.amount;
 }

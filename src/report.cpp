@@ -566,10 +566,10 @@ std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int 
                                  double elapsed) {
   std::ostringstream md;
   md << "# Sensitivity study: which claims hold under which model reading\n\n"
-     << "Each row reruns the nine experiment sets (SPEC.md section 7) with " << runs
+     << "Each row reruns the nine experiment sets (docs/experiments.md) with " << runs
      << " runs per value under one combination of noise mode, kernel and success radius "
-        "(SPEC.md section 8b). Cells: H holds, - does not hold, ? unclear "
-        "(rules in docs/claims.md). Computed in "
+        "(docs/experiments.md, `plumetrace sensitivity`). Cells: H holds, - does not hold, "
+        "? unclear (rules in docs/claims.md). Computed in "
      << static_cast<long>(elapsed) << " s.\n\n| noise mode | kernel | success radius |";
   const std::size_t n = matrix.empty() ? 0 : matrix.front().claims.size();
   for (std::size_t i = 0; i < n; ++i) md << " " << matrix.front().claims[i].id << " |";

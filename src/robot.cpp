@@ -96,7 +96,8 @@ void step_robot(const RobotParams& params, const Command& command, double dt, Ro
       return;
     }
     case Motion::kCurve: {
-      // why: the outer wheel runs at the limit, so the centre slows on tight curves (SPEC 4)
+      // why: the outer wheel runs at the limit, so the centre slows on tight curves
+      // (docs/model.md section 6)
       const double v =
           params.wheel_speed / (1.0 + std::fabs(command.curvature) * params.axle / 2.0);
       drive_clear(params, obstacle, command.curvature, v * dt, state);

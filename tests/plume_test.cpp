@@ -442,7 +442,7 @@ TEST(Plume, Lochmatter2008PresetMatchesSpecTable) {
   EXPECT_EQ(d.lifetime, p.lifetime);
   EXPECT_EQ(d.kernel, p.kernel);
   EXPECT_EQ(d.cutoff, p.cutoff);
-  // the source of SPEC section 1
+  // the source of docs/model.md section 1
   const SourceParams source;
   EXPECT_EQ(source.center.x, 1.0);
   EXPECT_EQ(source.center.y, 0.0);

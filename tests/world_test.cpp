@@ -259,7 +259,7 @@ TEST(RunMetrics, OverheadIsNaNWithoutUpwindProgress) {
   EXPECT_TRUE(std::isnan(r.overhead));
 }
 
-// reproducibility (SPEC section 9)
+// reproducibility (docs/model.md section 10)
 
 Trace record(const Scenario& s, std::uint64_t seed, std::uint64_t trial) {
   Trace trace;

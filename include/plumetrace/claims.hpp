@@ -16,7 +16,7 @@ enum class Verdict { kHolds, kDoesNotHold, kUnclear };
 /// Name of a verdict: "holds", "does not hold", "unclear".
 std::string_view verdict_name(Verdict v);
 
-/// One experiment set: an algorithm with one varied parameter (SPEC section 7).
+/// One experiment set: an algorithm with one varied parameter (docs/experiments.md).
 struct SetStats {
   std::string name;                ///< "A".."I"
   std::string algorithm;           ///< "casting", "surge-spiral", "surge-cast"
@@ -38,10 +38,10 @@ struct ClaimPart {
   double margin = NAN;
 };
 
-/// The verdict on one claim of SPEC section 8, with the figures that decided it.
+/// The verdict on one claim of docs/claims.md, with the figures that decided it.
 struct ClaimResult {
   int id = 0;                           ///< claim number, 1-11
-  std::string text;                     ///< the claim as SPEC section 8 words it
+  std::string text;                     ///< the claim as docs/claims.md words it
   Verdict verdict = Verdict::kUnclear;  ///< holds, does not hold or unclear
   std::string evidence;                 ///< the deciding figures, one clause per tested part
   std::vector<ClaimPart> parts;         ///< the tested parts, in evidence order
@@ -50,7 +50,7 @@ struct ClaimResult {
   double margin = NAN;
 };
 
-/// Evaluates SPEC section 8's claims 1-11 from the nine sets, keyed by name "A".."I". A claim
+/// Evaluates the claims 1-11 of docs/claims.md from the nine sets, keyed by name "A".."I". A claim
 /// whose sets are missing (or malformed) is kUnclear with evidence saying so.
 std::vector<ClaimResult> evaluate_claims(const std::map<std::string, SetStats>& sets);
 

@@ -113,7 +113,7 @@ std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps);
 void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                     const std::vector<RunRow>& rows);
 
-/// Writes one CSV row per sweep point with the statistics of SPEC section 7 over trials
+/// Writes one CSV row per sweep point with the statistics of docs/experiments.md over trials
 /// 0..runs-1. Throws IoError naming the file.
 void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                        const std::vector<RunRow>& rows, int runs_override);

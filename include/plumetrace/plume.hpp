@@ -10,7 +10,7 @@
 
 namespace plumetrace {
 
-/// Named sets of plume parameters (SPEC section 2).
+/// Named sets of plume parameters (docs/model.md section 11).
 enum class PlumePreset {
   kLochmatter2008,  ///< what the authors' Webots plugin ran (default)
   kPaperLiteral,    ///< the equations as printed in the paper

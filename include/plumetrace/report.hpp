@@ -11,7 +11,7 @@
 
 namespace plumetrace {
 
-/// The statistics of a single-axis sweep as an experiment set (SPEC section 7); the varied
+/// The statistics of a single-axis sweep as an experiment set (docs/experiments.md); the varied
 /// values must be numbers. `points` selects a subset of the sweep's points (all when empty) and
 /// `axis` which axis is the varied one.
 SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
@@ -58,7 +58,7 @@ struct SensitivityRow {
 };
 
 /// The sensitivity study's sweeps: each of the nine sets with the axes noise_mode, kernel and
-/// success radius put in front of its own (SPEC section 8b).
+/// success radius put in front of its own (docs/experiments.md, `plumetrace sensitivity`).
 std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs);
 
 /// The claims matrix from the sensitivity sweeps' rows.

@@ -4,7 +4,7 @@
 
 namespace plumetrace {
 
-/// The named random streams of one run (SPEC section 9).
+/// The named random streams of one run (docs/model.md section 10).
 enum class Stream : std::uint64_t {
   kPlume = 1,       ///< filament release and random walk
   kWindSensor = 2,  ///< wind-sensor noise

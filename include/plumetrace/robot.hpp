@@ -5,7 +5,7 @@
 
 namespace plumetrace {
 
-/// Khepera III differential drive (SPEC section 4).
+/// Khepera III differential drive (docs/model.md section 6).
 struct RobotParams {
   /// Body radius (m).
   double radius = 0.065;

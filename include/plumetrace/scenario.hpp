@@ -16,7 +16,7 @@
 
 namespace plumetrace {
 
-/// Time stepping (SPEC sections 1-2).
+/// Time stepping (docs/model.md section 2).
 struct SimParams {
   /// Time step for plume, sensors, control and motion (s).
   double dt = 0.032;
@@ -36,7 +36,7 @@ struct ArenaParams {
   double y_max = 2.0;
 };
 
-/// When a run ends (SPEC section 6).
+/// When a run ends (docs/model.md section 8).
 struct SupervisorParams {
   /// Success once the robot centre is this close to the source centre in (x, y) (m).
   double success_radius = 0.185;

@@ -8,7 +8,7 @@
 
 namespace plumetrace {
 
-/// Binary odor sensor (SPEC section 3).
+/// Binary odor sensor (docs/model.md section 4.7).
 struct OdorSensorParams {
   /// Concentration at or above which odor is perceived.
   double threshold = 100.0;

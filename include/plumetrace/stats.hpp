@@ -89,7 +89,7 @@ Interval bootstrap_mean_interval(std::span<const double> values, double level = 
                                  int resamples = kBootstrapResamples,
                                  std::uint64_t seed = kBootstrapSeed);
 
-/// Statistics of one sweep point (SPEC section 7).
+/// Statistics of one sweep point (docs/experiments.md, "Statistics").
 struct PointStats {
   std::int64_t runs = 0;           ///< runs at this point
   std::int64_t successes = 0;      ///< runs that reached the source

@@ -16,13 +16,13 @@
 
 namespace plumetrace {
 
-/// How a run ended (SPEC section 6).
+/// How a run ended (docs/model.md section 8).
 enum class Outcome { kRunning, kSuccess, kWall, kTimeout, kGaveUp };
 
 /// Name of an outcome: "running", "success", "wall", "timeout", "gave_up".
 std::string_view outcome_name(Outcome outcome);
 
-/// The metrics of one run (SPEC section 6).
+/// The metrics of one run (docs/model.md section 9).
 struct RunResult {
   /// How the run ended.
   Outcome outcome = Outcome::kRunning;
@@ -63,7 +63,8 @@ class Agent {
 
   /// Releases the robot into a plume warmed up for `warmup_time` seconds.
   void release(const Plume& plume, double warmup_time);
-  /// One step after the plume has made its own: sense, decide, move, check (SPEC section 2).
+  /// One step after the plume has made its own: sense, decide, move, check (docs/model.md
+  /// section 2).
   void step(const Plume& plume);
   /// The first half of a step, for callers that decide outside a Controller (learning agents):
   /// sense and return what a controller would see. Follow with act().
@@ -143,7 +144,7 @@ class World {
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
-  /// One step: environment, sense, decide, move, check (SPEC section 2).
+  /// One step: environment, sense, decide, move, check (docs/model.md section 2).
   void step();
   /// A step split for a decision made outside the controller: environment and sense ...
   Observation observe();

@@ -2,7 +2,7 @@
 
 A controller is an object with ``step(observation, wind) -> Command``; it may also have
 ``state`` and ``losses`` (attributes or methods) for traces and metrics. It sees only what the
-built-in ones see (SPEC.md section 5):
+built-in ones see (docs/model.md section 7.1):
 
 - ``observation.time`` (s since release), ``observation.odor`` (bool),
   ``observation.odometry`` (x, y, heading relative to the release pose), ``observation.odometer``;

@@ -456,8 +456,8 @@ class SweepSet:
 
 
 
-# The paper's own sentence behind each claim of SPEC.md section 8 (Lochmatter & Martinoli 2008,
-# sections 4 and 5; docs/claims.md gives each claim's reading and test).
+# The paper's own sentence behind each of the eleven claims (Lochmatter & Martinoli 2008,
+# sections 4 and 5; docs/claims.md states each claim and gives its reading and test).
 PAPER_QUOTES = {
     1: "The surge-spiral algorithm is extremely robust and virtually all 1350 runs succeeded.",
     2: "Small angles yield a low distance overhead, but also a low success rate. In our setup, "
@@ -922,7 +922,7 @@ def claims_matrix_figure(sens: dict, path: Path) -> Path:
     ax.set_xticklabels([str(j + 1) for j in range(n_claims)], fontsize=8)
     ax.xaxis.tick_top()
     ax.xaxis.set_label_position("top")
-    ax.set_xlabel("claim (SPEC.md section 8)", fontsize=8)
+    ax.set_xlabel("claim (docs/claims.md)", fontsize=8)
     ax.set_yticks(range(len(rows)))
     labels = []
     for row in rows:
@@ -1208,7 +1208,7 @@ POINT_HEADER = ["runs", "success rate [95% CI]", "overhead mean [95% CI]",
                 "mean losses"]
 
 
-def _header_blocks(summary: dict) -> list:
+def _header_blocks(summary: dict, out_dir: Path) -> list:
     claims = summary.get("claims") or []
     counts = {v: 0 for v in VERDICT_STYLE}
     for cl in claims:
@@ -1236,7 +1236,10 @@ def _header_blocks(summary: dict) -> list:
               "Experiments with Bio-Inspired Algorithms for Odor Source Localization in Laminar "
               "Wind Flow\u201d (its section 3.6), re-run in plumetrace under one or more "
               "readings of what the paper leaves unsaid, with its Figs. 6\u20139 redrawn and the "
-              "claims of its section 4 checked (SPEC.md sections 6\u20138)."]),
+              "claims of its section 4 checked (the model and its metrics: ",
+              _doc_link(out_dir, "docs/model.md"), "; the sets and their statistics: ",
+              _doc_link(out_dir, "docs/experiments.md"), "; the claims: ",
+              _doc_link(out_dir, "docs/claims.md"), ")."]),
         Table(header=None, rows=rows),
     ]
 
@@ -1347,9 +1350,9 @@ def _claims_section(out_dir: Path, summary: dict) -> Section:
                      cl.get("evidence") or DASH])
     return Section("claims", f"The claims and their evidence ({summary.get('preset') or 'main'} "
                    "reading)", [
-        Para(["Each claim of the paper's section 4, as SPEC.md section 8 states it, checked "
-              "against the sets above, never tuned to pass; the rules are in ",
-              _doc_link(out_dir, "docs/claims.md"), ". Verdicts: holds (green), does not hold "
+        Para(["Each claim of the paper's section 4, as ", _doc_link(out_dir, "docs/claims.md"),
+              " states it, checked against the sets above, never tuned to pass; the rules are "
+              "in the same document. Verdicts: holds (green), does not hold "
               "(red), unclear (amber). The verdicts of the other readings are under ",
               ("a", "What was found", "#verdict"), "."]),
         Table(header=["id", "claim", "verdict", "evidence"], rows=rows),
@@ -1375,8 +1378,9 @@ def _sensitivity_section(out_dir: Path, fig_dir: Path, summary: dict, written: l
         rows.append(row)
     return Section("sensitivity", title, [
         Para(["The three algorithms at their fixed values (sets A, D, G) rerun under each "
-              "success radius the supervisor accepts (SPEC.md section 6; 0.185 m is the "
-              "default). Each cell: success rate [Wilson 95%], then mean overhead "
+              "success radius the supervisor accepts (", _doc_link(out_dir, "docs/model.md"),
+              " section 8, and ", _doc_link(out_dir, "docs/fidelity.md"), ", unknown 6; "
+              "0.185 m is the default). Each cell: success rate [Wilson 95%], then mean overhead "
               "[bootstrap 95%] of the successful runs."]),
         Table(header=["variant"] + algorithms, rows=rows),
         _fig(out_dir, path, "Success rate (left) and mean distance overhead of the successful runs "
@@ -1416,8 +1420,9 @@ def _sensitivity_claims_section(out_dir: Path, fig_dir: Path, sens: dict, summar
         Para(["From ", ("code", SENSITIVITY_NAME), f" (version {sens.get('version') or DASH}): "
               "the nine sets rerun with ", ("b", f"{fmt_value(_num(sens.get('runs_per_point')))} "
                                                  "runs per point"),
-              f" under every combination of noise_mode, kernel and success radius (SPEC.md "
-              f"section 8b); elapsed {fmt_duration(_num(sens.get('elapsed_s')))}. Cells: "
+              " under every combination of noise_mode, kernel and success radius (",
+              _doc_link(out_dir, "docs/experiments.md"), ", ", ("code", "plumetrace sensitivity"),
+              f"); elapsed {fmt_duration(_num(sens.get('elapsed_s')))}. Cells: "
               "\u2713 holds (green), \u2717 does not hold (red), ? unclear (amber). The last row "
               "counts the combinations under which each claim holds."]),
         Table(header=header, rows=rows),
@@ -1444,7 +1449,8 @@ def _reproducibility_section(summary: dict, out_dir: Path) -> Section:
         ["master seed: ", ("code", fmt_raw_int(summary.get("seed"))),
          "; every run's random streams (plume, wind sensor, controller) are derived from "
          "(master seed, trial index, stream), so trial k meets the same plume at every value "
-         "of a set and results do not depend on the thread count (SPEC.md section 9)."],
+         "of a set and results do not depend on the thread count (",
+         _doc_link(out_dir, "docs/model.md"), " section 10)."],
         ["runs per point: ", fmt_value(_num(summary.get("runs_per_point"))),
          "; threads: ", fmt_value(_num(summary.get("threads")))],
     ]
@@ -1912,7 +1918,7 @@ def build_report(out_dir: Union[str, Path]) -> list:
     sections.append(_reproducibility_section(summary, out_dir))
 
     title = report_title(summary)
-    intro = _header_blocks(summary)
+    intro = _header_blocks(summary, out_dir)
     html_path = out_dir / "report.html"
     md_path = out_dir / "report.md"
     html_path.write_text(render_html(title, intro, sections), encoding="utf-8")

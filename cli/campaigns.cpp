@@ -216,6 +216,7 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
   info.threads = cmd.flags.threads > 0 ? cmd.flags.threads
                                        : static_cast<int>(std::thread::hardware_concurrency());
   info.elapsed = result.elapsed;
+  info.computed = result.computed;
   info.base_config =
       scenario_to_toml(load_scenario(sweeps.front().def.scenario_path, readings.front().settings));
   write_exports(cmd.flags.out, sweeps, rows, cmd.runs);

@@ -370,6 +370,7 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   doc["preset"] = info.preset;
   doc["threads"] = info.threads;
   doc["elapsed_s"] = info.elapsed;
+  if (info.computed >= 0) doc["computed_runs"] = info.computed;
   doc["config_toml"] = info.base_config;
   std::int64_t total = 0;
   for (const auto& s : sweeps) {

@@ -204,6 +204,7 @@ TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
   // the main reading and the one asked for, each with its eleven verdicts and fixed values
   const auto summary = nlohmann::json::parse(read_file(out + "/summary.json"));
   ASSERT_EQ(summary["readings"].size(), 2u);
+  EXPECT_EQ(summary["computed_runs"], summary["total_runs"]);  // a fresh folder: every run
   EXPECT_EQ(summary["readings"][0]["name"], "default");
   EXPECT_EQ(summary["readings"][1]["name"], "plugin-published");
   EXPECT_EQ(summary["readings"][1]["settings"]["plume.amount"], 1.0);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -38,6 +39,7 @@ struct ReproduceInfo {
   int runs_override = 0;          ///< --runs (0: the sweep files')
   int threads = 0;                ///< worker threads used
   double elapsed = 0.0;           ///< seconds spent running (this call)
+  std::int64_t computed = -1;     ///< runs computed by this call (-1: not known)
   std::string base_config;        ///< the resolved base scenario (TOML)
 };
 

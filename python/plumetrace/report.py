@@ -712,6 +712,17 @@ def _state_palette(states: Iterable[str]) -> dict:
     return palette
 
 
+def _elapsed_text(summary: dict) -> str:
+    """The run time of the command that wrote the summary, and how many of its runs it
+    computed: a report redrawn from a full store took no time to run anything."""
+    text = fmt_duration(_num(summary.get("elapsed_s")))
+    computed, total = _num(summary.get("computed_runs")), _num(summary.get("total_runs"))
+    if computed is not None and total is not None and computed < total:
+        text += (f" ({fmt_value(computed)} runs computed by this command, "
+                 f"{fmt_value(total - computed)} read from the results store)")
+    return text
+
+
 def _wind_text(summary: dict) -> str:
     """The main reading's wind as the figures state it; older summaries do not carry it."""
     wind = summary.get("wind") or {}
@@ -1223,7 +1234,7 @@ def _header_blocks(summary: dict, out_dir: Path) -> list:
         ("master seed", fmt_raw_int(summary.get("seed"))),
         ("runs per point", fmt_value(_num(summary.get("runs_per_point")))),
         ("total runs", fmt_value(_num(summary.get("total_runs")))),
-        ("elapsed", fmt_duration(_num(summary.get("elapsed_s")))),
+        ("elapsed", _elapsed_text(summary)),
         ("threads", fmt_value(_num(summary.get("threads")))),
     ]
     if claims:

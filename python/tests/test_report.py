@@ -486,3 +486,10 @@ def test_trajectory_axis_states_the_summary_wind():
     assert report._wind_text({"wind": {"vx": 0.9, "vy": 0.0}}) == "(wind 0.9 m/s along +x)"
     assert report._wind_text({"wind": {"vx": 1.0, "vy": 0.2}}) == "(wind 1, 0.2 m/s)"
     assert report._wind_text({}) == "(wind along +x)"
+
+
+def test_elapsed_line_says_how_many_runs_came_from_the_store():
+    assert "read from the results store" not in report._elapsed_text(
+        {"elapsed_s": 55.0, "computed_runs": 100, "total_runs": 100})
+    text = report._elapsed_text({"elapsed_s": 0.0, "computed_runs": 0, "total_runs": 20850})
+    assert "0 runs computed by this command" in text and "20850 read from the results store" in text

@@ -161,6 +161,8 @@ PlumeParams plume_preset(PlumePreset preset) {
   PlumeParams p;
   p.preset = preset;
   if (preset == PlumePreset::kPaperLiteral) {
+    // the plume as printed (paper sections 3.3-3.4; the lifetime is ours); the defaults are
+    // the default reading's
     p.amount = 8.3e9;
     p.sigma_p = 0.1;
     p.release_shape = ReleaseShape::kDisc;

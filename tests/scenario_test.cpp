@@ -41,6 +41,22 @@ TEST(Scenario, PaperLiteralFileSetsEveryPresetRow) {
   EXPECT_EQ(s.plume.lifetime, Lifetime::kLeaveArena);
   EXPECT_EQ(s.plume.kernel, Kernel::kPrinted);
   EXPECT_TRUE(std::isinf(s.plume.cutoff));
+  EXPECT_EQ(s.plume.amount, 8.3e9);
+  EXPECT_EQ(s.plume.sigma_p, 0.1);
+  // and the printed values outside the plume (the `printed` reading)
+  EXPECT_EQ(s.wind.velocity.x, 1.0);
+  EXPECT_EQ(s.odor.height, 0.0);
+  EXPECT_EQ(s.source.solid_radius, 0.0);
+  EXPECT_EQ(s.controller.surge_spiral.start_radius, 0.0);
+}
+
+TEST(Scenario, PaperLiteralFileIsThePrintedReading) {
+  // every key the `printed` preset sets has the same value in scenarios/paper-literal.toml
+  const Scenario file = load_scenario(kScenarios + "paper-literal.toml", {});
+  const Reading printed = read_reading(
+      std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008/presets", "printed");
+  const Scenario preset = load_scenario(kScenarios + "lochmatter2008.toml", printed.settings);
+  EXPECT_EQ(scenario_to_toml(file), scenario_to_toml(preset));
 }
 
 TEST(Scenario, ExplicitRowsWinOverThePresetWhateverTheirOrder) {

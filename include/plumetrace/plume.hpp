@@ -12,8 +12,10 @@ namespace plumetrace {
 
 /// Named sets of plume parameters (docs/model.md section 11).
 enum class PlumePreset {
-  kLochmatter2008,  ///< what the authors' Webots plugin ran (default)
-  kPaperLiteral,    ///< the equations as printed in the paper
+  /// the default: the plume of the default reading (docs/fidelity.md, "Which reading won"),
+  /// the plugin's plume with the amount never applied (s = 1), sigma_p = 0.02, printed kernel
+  kLochmatter2008,
+  kPaperLiteral,  ///< the equations as printed in the paper
 };
 
 /// Where new filaments appear around the source centre.

@@ -380,6 +380,25 @@ TEST_P(EveryAlgorithm, SamplesWindOnlyAtStateSwitches) {
 
 // Surge-spiral
 
+// A noise-free surge-spiral run that never meets odor: the robot loses the plume and spirals.
+struct LostSpiral {
+  std::vector<StepRecord> log;
+  std::size_t losses = 0;  // switches out of "surge": 1 expected
+  std::size_t start = 0;   // the first spiral step
+  double curl = 0.0;       // the spiral's turning direction
+};
+
+LostSpiral lost_spiral(const SurgeSpiralParams& params, int steps) {
+  SurgeSpiral spiral(params, Rng(3));
+  ScriptedWorld world(never);
+  LostSpiral run{world.run(spiral, steps)};
+  const auto sw = switches(run.log, "surge");
+  run.losses = sw.size();
+  run.start = sw.empty() ? 0 : sw[0];
+  run.curl = spiral.curl();
+  return run;
+}
+
 // Radii (m) at which the path crosses the ray from `centre` in direction `dir` (rad).
 std::vector<double> ray_crossings(const std::vector<StepRecord>& log, std::size_t from,
                                   const Pose& centre, double dir) {
@@ -406,13 +425,11 @@ TEST(SurgeSpiral, SpiralGapMatchesDGapAfterTheFirstTurn) {
     SurgeSpiralParams params;
     params.d_gap = d_gap;
     params.start_radius = 0.0;  // the spiral's centre is where the robot lost the plume
-    SurgeSpiral spiral(params, Rng(3));
-    ScriptedWorld world(never);
-    const auto log = world.run(spiral, 9000);
-    const auto sw = switches(log, "surge");
-    ASSERT_EQ(sw.size(), 1u);
+    const LostSpiral run = lost_spiral(params, 9000);
+    ASSERT_EQ(run.losses, 1u);
+    const auto& log = run.log;
     // noise-free: the robot already faces upwind, so the spiral starts where it was lost
-    const std::size_t start = sw[0];
+    const std::size_t start = run.start;
     EXPECT_EQ(log[start].command.motion, Motion::kCurve);
     const Pose centre = log[start].obs.odometry;
     const auto radii = ray_crossings(log, start, centre, kUpwind);
@@ -445,13 +462,11 @@ TEST(SurgeSpiral, StartRadiusStartsWithTheSpiralsCurvatureThere) {
   for (double r0 : {0.0, 0.02, 0.1, 0.5, 2.0}) {
     SurgeSpiralParams params;
     params.start_radius = r0;
-    SurgeSpiral spiral(params, Rng(3));
-    ScriptedWorld world(never);
-    const auto log = world.run(spiral, 400);
-    const auto sw = switches(log, "surge");
-    ASSERT_EQ(sw.size(), 1u);
+    const LostSpiral run = lost_spiral(params, 400);
+    ASSERT_EQ(run.losses, 1u);
+    const auto& log = run.log;
     // noise-free: the robot already faces upwind, so the first spiral step curves
-    const std::size_t i = sw[0];
+    const std::size_t i = run.start;
     ASSERT_EQ(log[i].command.motion, Motion::kCurve);
     const double theta0 = r0 / b;
     const double t2 = theta0 * theta0;
@@ -478,17 +493,15 @@ TEST(SurgeSpiral, ZeroStartRadiusFollowsTheSpiralFromItsCentre) {
   SurgeSpiralParams params;
   params.start_radius = 0.0;
   const double b = params.d_gap / (2.0 * kPi);
-  SurgeSpiral spiral(params, Rng(3));
-  ScriptedWorld world(never);
-  const auto log = world.run(spiral, 1500);
-  const auto sw = switches(log, "surge");
-  ASSERT_EQ(sw.size(), 1u);
-  const std::size_t start = sw[0];
+  const LostSpiral run = lost_spiral(params, 1500);
+  ASSERT_EQ(run.losses, 1u);
+  const auto& log = run.log;
+  const std::size_t start = run.start;
   EXPECT_EQ(std::fabs(log[start].command.curvature), 2.0 / b);
   double theta = 0.0;
   for (std::size_t i = start; i < log.size(); ++i) {
     theta = spiral_angle_at(b, log[i].obs.odometer - log[start].obs.odometer, theta);
-    EXPECT_EQ(log[i].command.curvature, spiral.curl() * spiral_curvature(b, theta)) << i;
+    EXPECT_EQ(log[i].command.curvature, run.curl * spiral_curvature(b, theta)) << i;
   }
 }
 

@@ -78,6 +78,11 @@ Overrides overrides_of(const py::list& pairs) {
   for (const py::handle item : pairs) {
     const auto pair = py::reinterpret_borrow<py::tuple>(item);
     const std::string key = text_of(pair[0], "a config key");
+    // why: the key goes into C strings (an exception's what()), which would end at the NUL
+    if (key.find('\0') != std::string::npos) {
+      throw pt::ConfigError("config key " + py::repr(pair[0]).cast<std::string>() +
+                            " contains a NUL character");
+    }
     out.emplace_back(key, config_value(key, pair[1]));
   }
   return out;

@@ -124,5 +124,11 @@ class PlumeEnv:
 def _command(action):
     if isinstance(action, _core.Command):
         return action
-    heading = float(np.asarray(action, dtype=np.float64).reshape(-1)[0])
-    return _core.Command.go(heading)
+    try:
+        values = np.asarray(action, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        values = np.empty(0)
+    if values.size != 1:
+        raise TypeError("an action is a heading (a number or an array of one) or a Command, got "
+                        f"{type(action).__name__} {action!r}"[:300])
+    return _core.Command.go(float(values[0]))

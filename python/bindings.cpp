@@ -245,8 +245,7 @@ class PyController : public pt::Controller {
       const long long count = PyLong_AsLongLongAndOverflow(n.ptr(), &overflow);
       if (overflow != 0 || count < 0 || count > INT_MAX) {
         throw py::value_error("controller.losses must be an int from 0 to " +
-                              std::to_string(INT_MAX) + ", got " +
-                              py::repr(v).cast<std::string>());
+                              std::to_string(INT_MAX) + ", got " + py::repr(v).cast<std::string>());
       }
       losses_ = static_cast<int>(count);
     }
@@ -267,9 +266,9 @@ class PyController : public pt::Controller {
 pt::ControllerFactory python_factory(py::object factory, const std::atomic<bool>* stop = nullptr) {
   if (factory.is_none()) return {};
   if (!PyCallable_Check(factory.ptr())) {
-    throw py::type_error("controller must be a factory f(scenario_dict, rng) (a class or a "
-                         "function), got " +
-                         type_name(factory));
+    throw py::type_error(
+        "controller must be a factory f(scenario_dict, rng) (a class or a function), got " +
+        type_name(factory));
   }
   auto shared = std::make_shared<py::object>(std::move(factory));
   return [shared, stop](const pt::Scenario& scenario,
@@ -346,8 +345,10 @@ void attach(const py::handle& error, const char* name, const py::object& value) 
 // finished before it ride on the exception as `partial_rows` (name, columns)
 py::dict sweep(const std::string& path, const py::list& overrides, int runs, int threads,
                bool share_plumes, py::object controller_factory) {
-  if (runs < 0) throw pt::ConfigError("runs: must be >= 0 (0: the sweep file's; got " +
-                                      std::to_string(runs) + ")");
+  if (runs < 0) {
+    throw pt::ConfigError("runs: must be >= 0 (0: the sweep file's; got " + std::to_string(runs) +
+                          ")");
+  }
   if (threads < 0 || threads > pt::kMaxThreads) {
     throw pt::ConfigError("threads: must be 0 (all cores) to " + std::to_string(pt::kMaxThreads) +
                           " (got " + std::to_string(threads) + ")");
@@ -659,11 +660,10 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("odor", &pt::Observation::odor)
       .def_readonly("odometry", &pt::Observation::odometry)
       .def_readonly("odometer", &pt::Observation::odometer);
-  py::class_<StepWindProbe>(m, "WindProbe")
-      .def("measure_wind_body", [](StepWindProbe& w) {
-        const pt::Vec2 v = w.measure_wind_body();
-        return py::make_tuple(v.x, v.y);
-      });
+  py::class_<StepWindProbe>(m, "WindProbe").def("measure_wind_body", [](StepWindProbe& w) {
+    const pt::Vec2 v = w.measure_wind_body();
+    return py::make_tuple(v.x, v.y);
+  });
   // why: a non-finite heading or curvature is refused where the controller makes it, so that
   // the traceback points at the controller's line
   const auto finite = [](const char* what, double value) {
@@ -683,7 +683,9 @@ PYBIND11_MODULE(_core, m) {
           py::arg("heading"))
       .def_static(
           "go",
-          [finite](double heading) { return pt::Command::go(finite("Command.go: heading", heading)); },
+          [finite](double heading) {
+            return pt::Command::go(finite("Command.go: heading", heading));
+          },
           py::arg("heading"))
       .def_static(
           "curve",

@@ -294,11 +294,10 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
   // why: too few plumes for the threads (a sweep of few trials): split groups so every core works
-  std::vector<TaskGroup> groups = split_groups(
-      plume_groups(sweeps, tasks, options.share_plumes), 2 * static_cast<std::size_t>(threads));
+  std::vector<TaskGroup> groups = split_groups(plume_groups(sweeps, tasks, options.share_plumes),
+                                               2 * static_cast<std::size_t>(threads));
   // why: a thread with no group to run would only cost its stack
-  const int workers =
-      static_cast<int>(std::min(static_cast<std::size_t>(threads), groups.size()));
+  const int workers = static_cast<int>(std::min(static_cast<std::size_t>(threads), groups.size()));
   GroupPool pool(sweeps, workers, options.make_controller, options.stop);
   pool.add(std::move(groups));
 

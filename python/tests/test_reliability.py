@@ -225,6 +225,31 @@ def test_run_refuses_a_seed_that_is_not_a_whole_number_in_range(seed, error):
         pt.run(seed=seed, trace=False)
 
 
+def test_an_env_refuses_a_seed_that_is_not_a_whole_number():
+    from plumetrace.env import PlumeEnv
+
+    with pytest.raises(TypeError, match="seed"):
+        PlumeEnv(seed=1.7)
+    with pytest.raises(ValueError, match="seed"):
+        PlumeEnv().reset(seed=-1)
+
+
+@pytest.mark.parametrize("action", [[], [0.1, 0.2], "north", None, math.nan])
+def test_an_env_action_that_is_not_one_finite_heading_is_refused_naming_it(action):
+    from plumetrace.env import PlumeEnv
+
+    env = PlumeEnv(sim__warmup=0.0)
+    env.reset(seed=1)
+    with pytest.raises((TypeError, ValueError), match="action|finite"):
+        env.step(action)
+    env.step(0.0)  # the episode goes on
+
+
+def test_a_config_key_with_a_nul_character_is_refused_naming_it():
+    with pytest.raises(pt.ConfigError, match=r"config key 'sim\\x00dt' contains a NUL"):
+        pt.Scenario().update({"sim\x00dt": 0.1})
+
+
 @pytest.mark.parametrize("name, value, error", [("runs", -5, ValueError), ("runs", 2.0, TypeError),
                                                  ("threads", -3, ValueError),
                                                  ("threads", 1.5, TypeError),

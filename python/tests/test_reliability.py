@@ -341,6 +341,9 @@ def test_ctrl_c_stops_a_sweep_with_keyboard_interrupt_and_keeps_the_finished_run
     # the first controller built sends SIGINT; every run then waits until the handler has run
     # (up to 10 s): with the signal seen during the sweep, no run starts after it
     done = run_isolated("""
+        # why: the handler runs on the main thread with the GIL; a long switch interval keeps it
+        # there until the sweep has set its stop flag, so no worker starts a run in between
+        sys.setswitchinterval(100.0)
         handled = threading.Event()
         def on_sigint(signum, frame):
             handled.set()

@@ -12,7 +12,7 @@ import pytest
 from conftest import plumetrace_with_core
 
 pt = plumetrace_with_core()
-pytest.importorskip("hypothesis")
+import hypothesis  # noqa: E402,F401 -- Debian's python3-hypothesis (scripts/setup.sh); required
 
 HERE = Path(__file__).resolve().parent
 CHECKS = ["check_config_dicts_resolve_or_raise_naming_a_key",

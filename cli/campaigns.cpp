@@ -160,7 +160,7 @@ int draw_report(const std::string& out) {
 
 void CampaignFlags::add_to(CLI::App& sub) {
   sub.add_option("--threads", threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, kMaxThreads));
   sub.add_option("--out", out, "output folder: stores, summary and report (default: out)");
   sub.add_option("--experiments", experiments,
                  "folder of the sweep files (default: experiments/lochmatter2008)");
@@ -273,7 +273,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
   sub->add_option("--threads", cmd.threads,
                   "worker threads (default: all cores; under mpirun, per rank: the cores shared "
                   "among the ranks on each machine)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, kMaxThreads));
   sub->add_option("--store", cmd.store,
                   "results store (default: OUT/results.sqlite; with --shard "
                   "OUT/part-I-of-N.sqlite)");

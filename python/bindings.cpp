@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <climits>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -35,12 +37,63 @@ namespace {
 // dotted keys and values set from Python, in order
 using Overrides = std::vector<std::pair<std::string, pt::ConfigValue>>;
 
+// the name of an object's type, for messages ("NoneType", "MyController")
+std::string type_name(const py::handle& value) {
+  return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
+}
+
+// text of a Python str; ConfigError naming `what` where it cannot be UTF-8 (a lone surrogate)
+std::string text_of(const py::handle& value, const std::string& what) {
+  try {
+    return value.cast<std::string>();
+  } catch (const py::error_already_set&) {
+    throw pt::ConfigError(what + ": " + py::repr(value).cast<std::string>() +
+                          " is not valid Unicode text");
+  }
+}
+
+// a config value from Python: bool, int, float or str, with the key in every refusal
+// why: pybind's variant caster would take True as the int 1 (a bool is an int in Python), so
+// that `sim.dt = True` passed as a number; bool goes first here, and no key takes a bool
+pt::ConfigValue config_value(const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
+  if (py::isinstance<py::int_>(value)) {
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0) {
+      throw pt::ConfigError(key + ": " + py::repr(value).cast<std::string>() +
+                            " is out of the range of a 64-bit integer");
+    }
+    return static_cast<std::int64_t>(v);
+  }
+  if (py::isinstance<py::float_>(value)) return value.cast<double>();
+  if (py::isinstance<py::str>(value)) return text_of(value, key);
+  throw pt::ConfigError(key + ": value " + py::repr(value).cast<std::string>() + " (" +
+                        type_name(value) + ") is not a bool, int, float or str");
+}
+
+// the overrides of a Python list of (dotted key, value) pairs
+Overrides overrides_of(const py::list& pairs) {
+  Overrides out;
+  for (const py::handle item : pairs) {
+    const auto pair = py::reinterpret_borrow<py::tuple>(item);
+    const std::string key = text_of(pair[0], "a config key");
+    // why: the key goes into C strings (an exception's what()), which would end at the NUL
+    if (key.find('\0') != std::string::npos) {
+      throw pt::ConfigError("config key " + py::repr(pair[0]).cast<std::string>() +
+                            " contains a NUL character");
+    }
+    out.emplace_back(key, config_value(key, pair[1]));
+  }
+  return out;
+}
+
 // settings of a scenario file (if any) then of the given overrides, in order
 std::vector<pt::Setting> settings_of(const std::optional<std::string>& path,
-                                     const Overrides& overrides) {
+                                     const py::list& overrides) {
   std::vector<pt::Setting> settings;
   if (path) settings = pt::read_scenario_file(*path);
-  for (const auto& [key, value] : overrides) {
+  for (const auto& [key, value] : overrides_of(overrides)) {
     pt::Setting s;
     s.key = key;
     s.value = value;
@@ -51,7 +104,7 @@ std::vector<pt::Setting> settings_of(const std::optional<std::string>& path,
   return settings;
 }
 
-pt::Scenario scenario_of(const std::optional<std::string>& path, const Overrides& overrides) {
+pt::Scenario scenario_of(const std::optional<std::string>& path, const py::list& overrides) {
   return pt::build_scenario(settings_of(path, overrides));
 }
 
@@ -109,32 +162,93 @@ py::list snapshot_list(const pt::Trace& trace) {
   return out;
 }
 
+// The wind probe a Python controller's step() receives: it measures only during that call.
+// why: the C++ probe belongs to the run's World; a probe kept in Python and called after the run
+// would read freed memory, and one called from another run's thread would race with its World
+class StepWindProbe {
+ public:
+  explicit StepWindProbe(pt::WindProbe* probe) : probe_(probe) {}
+  /// One noisy wind sample (m/s, robot frame); RuntimeError once its step() has returned.
+  pt::Vec2 measure_wind_body() {
+    if (probe_ == nullptr) {
+      throw std::runtime_error(
+          "the wind probe is valid only during the step() call that received it; measure the "
+          "wind there and keep the value, not the probe");
+    }
+    return probe_->measure_wind_body();
+  }
+  /// Ends the probe's validity (its step() returned).
+  void invalidate() { probe_ = nullptr; }
+
+ private:
+  pt::WindProbe* probe_;
+};
+
 // A controller written in Python: an object with step(observation, wind) -> Command and
-// optional state() -> str and losses() -> int. Calls take the GIL.
+// optional state() -> str and losses() -> int. Calls take the GIL; `stop` (may be null), set
+// when the caller is interrupted, ends a run at its next step.
 class PyController : public pt::Controller {
  public:
   // constructed with the GIL held
-  explicit PyController(py::object impl) : impl_(std::move(impl)) { refresh(); }
+  PyController(py::object impl, const std::atomic<bool>* stop)
+      : impl_(std::move(impl)), stop_(stop) {
+    refresh();
+  }
   ~PyController() override {
     py::gil_scoped_acquire gil;
     impl_ = py::object();
   }
 
   pt::Command step(const pt::Observation& obs, pt::WindProbe& wind) override {
+    if (stop_ != nullptr && stop_->load()) throw Interrupted();
     py::gil_scoped_acquire gil;
-    py::object command =
-        impl_.attr("step")(obs, py::cast(&wind, py::return_value_policy::reference));
+    py::object probe = py::cast(StepWindProbe(&wind));
+    py::object command;
+    {
+      // invalidates the probe however step() ends (the GIL is still held then)
+      const ProbeLease lease{probe.cast<StepWindProbe*>()};
+      command = impl_.attr("step")(obs, probe);
+    }
+    // why: cast<Command>() of a wrong type throws pybind's reference_cast_error, which the
+    // dispatcher of run()/sweep() reports as a mismatch of their own arguments
+    if (!py::isinstance<pt::Command>(command)) {
+      throw py::type_error("controller.step must return a Command, got " + type_name(command));
+    }
     refresh();
     return command.cast<pt::Command>();
   }
   std::string_view state() const override { return state_; }
   int losses() const override { return losses_; }
 
+  /// Thrown by step() once the caller is interrupted; the caller raises the signal's error.
+  struct Interrupted : std::runtime_error {
+    Interrupted() : std::runtime_error("interrupted") {}
+  };
+
  private:
+  struct ProbeLease {
+    StepWindProbe* probe;
+    ~ProbeLease() { probe->invalidate(); }
+  };
+
   // the state name and loss count the Python object reports, if it has them
   void refresh() {
     if (py::hasattr(impl_, "state")) state_ = py::str(call_or_value("state")).cast<std::string>();
-    if (py::hasattr(impl_, "losses")) losses_ = call_or_value("losses").cast<int>();
+    if (py::hasattr(impl_, "losses")) {
+      const py::object v = call_or_value("losses");
+      if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) {
+        throw py::type_error("controller.losses must be an int, got " + type_name(v));
+      }
+      const auto n = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
+      if (!n) throw py::error_already_set();
+      int overflow = 0;
+      const long long count = PyLong_AsLongLongAndOverflow(n.ptr(), &overflow);
+      if (overflow != 0 || count < 0 || count > INT_MAX) {
+        throw py::value_error("controller.losses must be an int from 0 to " +
+                              std::to_string(INT_MAX) + ", got " + py::repr(v).cast<std::string>());
+      }
+      losses_ = static_cast<int>(count);
+    }
   }
   py::object call_or_value(const char* name) {
     py::object v = impl_.attr(name);
@@ -142,20 +256,33 @@ class PyController : public pt::Controller {
   }
 
   py::object impl_;
+  const std::atomic<bool>* stop_;
   std::string state_ = "python";
   int losses_ = 0;
 };
 
 // A controller factory calling the Python `factory(scenario_dict, rng)` for each run; empty
-// for None (the scenario's built-in algorithm).
-pt::ControllerFactory python_factory(py::object factory) {
+// for None (the scenario's built-in algorithm). `stop` as for PyController.
+pt::ControllerFactory python_factory(py::object factory, const std::atomic<bool>* stop = nullptr) {
   if (factory.is_none()) return {};
+  if (!PyCallable_Check(factory.ptr())) {
+    throw py::type_error(
+        "controller must be a factory f(scenario_dict, rng) (a class or a function), got " +
+        type_name(factory));
+  }
   auto shared = std::make_shared<py::object>(std::move(factory));
-  return [shared](const pt::Scenario& scenario, pt::Rng rng) -> std::unique_ptr<pt::Controller> {
+  return [shared, stop](const pt::Scenario& scenario,
+                        pt::Rng rng) -> std::unique_ptr<pt::Controller> {
     py::gil_scoped_acquire gil;
     py::object impl =
         (*shared)(py::module_::import("json").attr("loads")(pt::scenario_to_json(scenario)), rng);
-    return std::make_unique<PyController>(std::move(impl));
+    if (!py::hasattr(impl, "step")) {
+      throw py::type_error(
+          "the controller factory must return an object with a step(observation, wind) method, "
+          "got " +
+          type_name(impl));
+    }
+    return std::make_unique<PyController>(std::move(impl), stop);
   };
 }
 
@@ -171,7 +298,7 @@ class ExternalController : public pt::Controller {
 };
 
 // one run, optionally traced, optionally with a Python controller
-py::dict run(const std::optional<std::string>& path, const Overrides& overrides, std::uint64_t seed,
+py::dict run(const std::optional<std::string>& path, const py::list& overrides, std::uint64_t seed,
              std::uint64_t trial, bool trace, double snapshot_interval,
              py::object controller_factory, const std::optional<std::string>& view) {
   const pt::Scenario scenario = scenario_of(path, overrides);
@@ -199,29 +326,101 @@ py::dict run(const std::optional<std::string>& path, const Overrides& overrides,
   return out;
 }
 
-// every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial)
-py::dict sweep(const std::string& path, const Overrides& overrides, int runs, int threads,
+// The most runs one Python sweep call may define. why: it lists every task up front and keeps
+// every row in memory (about 0.5 kB with its Python columns), so 10^7 runs take some 5 GB; a
+// larger campaign belongs in `plumetrace sweep --store`, which commits as it goes
+constexpr std::int64_t kMaxPythonSweepRuns = 10'000'000;
+
+// the rows of a sweep as columns: point, axis values, trial, seed and every metric
+py::dict sweep_columns(const pt::ExpandedSweep& s, std::vector<pt::RunRow> rows);
+
+// sets an attribute of an exception where it takes one (an exception type may refuse it)
+void attach(const py::handle& error, const char* name, const py::object& value) {
+  if (PyObject_SetAttrString(error.ptr(), name, value.ptr()) != 0) PyErr_Clear();
+}
+
+// every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial).
+// Ctrl-C (any Python signal handler that raises) or an error of a run (a Python controller's
+// exception) stops it: runs not started are dropped, the error is raised here, and the rows
+// finished before it ride on the exception as `partial_rows` (name, columns)
+py::dict sweep(const std::string& path, const py::list& overrides, int runs, int threads,
                bool share_plumes, py::object controller_factory) {
+  if (runs < 0) {
+    throw pt::ConfigError("runs: must be >= 0 (0: the sweep file's; got " + std::to_string(runs) +
+                          ")");
+  }
+  if (threads < 0 || threads > pt::kMaxThreads) {
+    throw pt::ConfigError("threads: must be 0 (all cores) to " + std::to_string(pt::kMaxThreads) +
+                          " (got " + std::to_string(threads) + ")");
+  }
   std::vector<pt::Setting> settings = settings_of(std::nullopt, overrides);
   const std::vector<pt::ExpandedSweep> sweeps = {
       pt::expand_sweep(pt::read_sweep_file(path), settings)};
+  const pt::ExpandedSweep& s = sweeps.front();
+  const std::int64_t defined = static_cast<std::int64_t>(s.points.size()) *
+                               static_cast<std::int64_t>(pt::runs_per_point(s, runs));
+  if (defined > kMaxPythonSweepRuns) {
+    throw pt::ConfigError(
+        "runs: " + std::to_string(s.points.size()) + " points x " +
+        std::to_string(pt::runs_per_point(s, runs)) + " runs = " + std::to_string(defined) +
+        " runs, more than the " + std::to_string(kMaxPythonSweepRuns) +
+        " a Python sweep holds in memory; use plumetrace sweep --store for a larger campaign");
+  }
   const std::vector<pt::RunTask> tasks = pt::missing_runs(sweeps, {}, runs);
+  std::atomic<bool> stop{false};
+  std::unique_ptr<py::error_already_set> signal;
   pt::CampaignOptions options;
   options.threads = threads;
   options.share_plumes = share_plumes;
-  options.make_controller = python_factory(std::move(controller_factory));
+  options.make_controller = python_factory(std::move(controller_factory), &stop);
+  options.stop = &stop;
+  // why: the workers run without the GIL, so Python sees no signal until this thread looks
+  options.on_progress = [&](const pt::Progress&) {
+    if (stop) return;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      signal = std::make_unique<py::error_already_set>();
+      stop = true;
+    }
+  };
   std::vector<pt::RunRow> rows;
+  std::exception_ptr failure;
   {
     py::gil_scoped_release release;
-    pt::run_tasks(sweeps, tasks, options, [&rows](const std::vector<pt::RunRow>& batch) {
-      rows.insert(rows.end(), batch.begin(), batch.end());
-    });
+    try {
+      pt::run_tasks(sweeps, tasks, options, [&rows](const std::vector<pt::RunRow>& batch) {
+        rows.insert(rows.end(), batch.begin(), batch.end());
+      });
+    } catch (...) {
+      failure = std::current_exception();
+    }
   }
+  if (signal || failure) {
+    // the signal's error first: a run cut short by it (PyController::Interrupted) is no failure
+    py::dict partial;
+    partial["name"] = s.def.name;
+    partial["columns"] = sweep_columns(s, std::move(rows));
+    if (signal) {
+      attach(signal->value(), "partial_rows", partial);
+      throw std::move(*signal);
+    }
+    try {
+      std::rethrow_exception(failure);
+    } catch (py::error_already_set& e) {
+      attach(e.value(), "partial_rows", partial);
+      throw;
+    }
+  }
+  py::dict out;
+  out["name"] = s.def.name;
+  out["columns"] = sweep_columns(s, std::move(rows));
+  return out;
+}
+
+py::dict sweep_columns(const pt::ExpandedSweep& s, std::vector<pt::RunRow> rows) {
   std::sort(rows.begin(), rows.end(), [](const pt::RunRow& a, const pt::RunRow& b) {
     return std::tie(a.point, a.trial) < std::tie(b.point, b.trial);
   });
-  // columns: point, axis values, trial, seed and every metric
-  const pt::ExpandedSweep& s = sweeps.front();
   py::dict columns;
   std::vector<std::int64_t> point, trial, losses, steps, wind_samples;
   std::vector<std::uint64_t> seed;
@@ -264,20 +463,7 @@ py::dict sweep(const std::string& path, const Overrides& overrides, int runs, in
   columns["odor_fraction"] = to_array(odor_fraction);
   columns["steps"] = to_array(steps);
   columns["wind_samples"] = to_array(wind_samples);
-  py::dict out;
-  out["name"] = s.def.name;
-  out["columns"] = columns;
-  return out;
-}
-
-// a config value from Python: bool, int, float or str (bool before int: True is an int too)
-pt::ConfigValue config_value(const py::handle& value) {
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>();
-  if (py::isinstance<py::int_>(value)) return value.cast<std::int64_t>();
-  if (py::isinstance<py::float_>(value)) return value.cast<double>();
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  throw pt::ConfigError("value " + py::repr(value).cast<std::string>() +
-                        " is not a bool, int, float or str");
+  return columns;
 }
 
 // one point's statistics as a dict
@@ -311,8 +497,9 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
   options.seed = seed;
   options.threads = threads;
   for (const auto& [key, value] : overrides) {
-    options.overrides.push_back({py::str(key).cast<std::string>(), config_value(value), false,
-                                 "Python", pt::Layer::kCommandLine});
+    const std::string name = text_of(py::str(key), "a config key");
+    options.overrides.push_back(
+        {name, config_value(name, value), false, "Python", pt::Layer::kCommandLine});
   }
   std::atomic<bool> stop{false};
   std::unique_ptr<py::error_already_set> signal;
@@ -385,16 +572,17 @@ PYBIND11_MODULE(_core, m) {
 
   py::register_exception<pt::ConfigError>(m, "ConfigError", PyExc_ValueError);
   py::register_exception<pt::IoError>(m, "IoError", PyExc_OSError);
+  m.attr("MAX_THREADS") = pt::kMaxThreads;
 
   m.def(
       "resolve_json",
-      [](const std::optional<std::string>& path, const Overrides& overrides) {
+      [](const std::optional<std::string>& path, const py::list& overrides) {
         return pt::scenario_to_json(scenario_of(path, overrides));
       },
       "the resolved scenario as JSON");
   m.def(
       "resolve_toml",
-      [](const std::optional<std::string>& path, const Overrides& overrides) {
+      [](const std::optional<std::string>& path, const py::list& overrides) {
         return pt::scenario_to_toml(scenario_of(path, overrides));
       },
       "the resolved scenario as TOML");
@@ -433,7 +621,7 @@ PYBIND11_MODULE(_core, m) {
 
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")
-      .def(py::init([](const std::optional<std::string>& path, const Overrides& overrides,
+      .def(py::init([](const std::optional<std::string>& path, const py::list& overrides,
                        std::uint64_t seed, std::uint64_t trial) {
              const pt::Scenario scenario = scenario_of(path, overrides);
              py::gil_scoped_release release;
@@ -472,15 +660,39 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("odor", &pt::Observation::odor)
       .def_readonly("odometry", &pt::Observation::odometry)
       .def_readonly("odometer", &pt::Observation::odometer);
-  py::class_<pt::WindProbe>(m, "WindProbe").def("measure_wind_body", [](pt::WindProbe& w) {
+  py::class_<StepWindProbe>(m, "WindProbe").def("measure_wind_body", [](StepWindProbe& w) {
     const pt::Vec2 v = w.measure_wind_body();
     return py::make_tuple(v.x, v.y);
   });
+  // why: a non-finite heading or curvature is refused where the controller makes it, so that
+  // the traceback points at the controller's line
+  const auto finite = [](const char* what, double value) {
+    if (!std::isfinite(value)) {
+      throw py::value_error(std::string(what) + " must be a finite number, got " +
+                            py::repr(py::float_(value)).cast<std::string>());
+    }
+    return value;
+  };
   py::class_<pt::Command>(m, "Command")
       .def_static("stop", &pt::Command::stop)
-      .def_static("turn_to", &pt::Command::turn_to, py::arg("heading"))
-      .def_static("go", &pt::Command::go, py::arg("heading"))
-      .def_static("curve", &pt::Command::curve, py::arg("curvature"))
+      .def_static(
+          "turn_to",
+          [finite](double heading) {
+            return pt::Command::turn_to(finite("Command.turn_to: heading", heading));
+          },
+          py::arg("heading"))
+      .def_static(
+          "go",
+          [finite](double heading) {
+            return pt::Command::go(finite("Command.go: heading", heading));
+          },
+          py::arg("heading"))
+      .def_static(
+          "curve",
+          [finite](double curvature) {
+            return pt::Command::curve(finite("Command.curve: curvature", curvature));
+          },
+          py::arg("curvature"))
       .def_static("abandon", &pt::Command::abandon)
       .def_readonly("heading", &pt::Command::heading)
       .def_readonly("curvature", &pt::Command::curvature)

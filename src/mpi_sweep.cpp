@@ -232,6 +232,11 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
     received += static_cast<std::int64_t>(own.rows.size());
     for (auto& r : own.rows) pending.push_back(std::move(r));
     outbox.progress();
+    // a run of this rank failed (a controller's error): keep what is in, then end the job
+    if (own.error && own.idle) {
+      commit();
+      std::rethrow_exception(own.error);
+    }
 
     const bool done = present == 0 && own.idle && (queue.empty() || stopping);
     // why: once stopping, rows go to the store as they come, since the launcher may kill this
@@ -378,6 +383,11 @@ bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
     GroupPool::Batch batch = pool.take(busy ? 0.0 : 0.001);
     if (!batch.rows.empty()) {
       outbox.post(0, kRows, encode_rows(batch.rows));
+    }
+    // a run failed (a controller's error): send what is done, then end the job
+    if (batch.error && batch.idle) {
+      outbox.drain(1.0);
+      std::rethrow_exception(batch.error);
     }
     // the hook's other case: told there is no more before the m-th block, it dies once its
     // running groups' rows are sent, holding nothing

@@ -4,9 +4,12 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <set>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "json_util.hpp"
@@ -162,15 +165,29 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
   // the re-runs, in parallel; each result lands in its own slot
   std::vector<FailedRun> done(jobs.size());
   std::atomic<std::size_t> next{0};
+  std::mutex failure_mutex;
+  std::exception_ptr failure;
   const auto work = [&] {
-    for (std::size_t i = next++; i < jobs.size(); i = next++) {
-      done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run);
+    try {
+      for (std::size_t i = next++; i < jobs.size(); i = next++) {
+        done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run);
+      }
+    } catch (...) {
+      // why: an exception leaving a thread ends the process; the caller rethrows it instead
+      const std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = jobs.size();
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  try {
+    for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {
+    // why: the re-runs share one counter, so fewer threads than asked only take longer
+  }
   work();
   for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 
   for (std::size_t a = 0; a < algorithms.size(); ++a) {
     const double sx = algorithms[a]["source_x"], sy = algorithms[a]["source_y"];

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <stdexcept>
+#include <system_error>
 
 #include "plumetrace/io.hpp"
 
@@ -175,7 +176,21 @@ GroupPool::GroupPool(const std::vector<ExpandedSweep>& sweeps, int threads,
                      ControllerFactory factory, const std::atomic<bool>* stop)
     : sweeps_(sweeps), factory_(std::move(factory)), external_stop_(stop) {
   threads_.reserve(static_cast<std::size_t>(threads));
-  for (int k = 0; k < threads; ++k) threads_.emplace_back([this] { work(); });
+  try {
+    for (int k = 0; k < threads; ++k) threads_.emplace_back([this] { work(); });
+  } catch (const std::system_error& e) {
+    // why: a joinable thread left behind would end the process in std::terminate
+    {
+      std::lock_guard lock(mutex_);
+      closed_ = true;
+    }
+    work_ready_.notify_all();
+    for (auto& t : threads_) t.join();
+    throw std::system_error(e.code(), "cannot start " + std::to_string(threads) +
+                                          " worker threads (the system refused thread " +
+                                          std::to_string(threads_.size() + 1) +
+                                          "; ask for fewer threads)");
+  }
 }
 
 GroupPool::~GroupPool() {
@@ -206,6 +221,7 @@ GroupPool::Batch GroupPool::take(double timeout) {
   Batch batch;
   batch.rows.swap(rows_);
   batch.idle = idle();
+  batch.error = error_;
   return batch;
 }
 
@@ -240,12 +256,24 @@ void GroupPool::work() {
       queue_.pop_front();
       ++running_;
     }
-    std::vector<RunRow> rows = run_group(sweeps_, group, factory_);
+    std::vector<RunRow> rows;
+    std::exception_ptr error;
+    try {
+      rows = run_group(sweeps_, group, factory_);
+    } catch (...) {
+      // why: an exception leaving a thread ends the process; the caller rethrows it instead
+      error = std::current_exception();
+    }
     {
       std::lock_guard lock(mutex_);
       for (auto& row : rows) rows_.push_back(std::move(row));
       --running_;
+      if (error && !error_) {
+        error_ = error;
+        stop_ = true;
+      }
     }
+    if (error) work_ready_.notify_all();
     changed_.notify_all();
   }
 }
@@ -257,17 +285,25 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
   const auto start = Clock::now();
   const auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   CampaignResult result;
+  if (options.threads < 0 || options.threads > kMaxThreads) {
+    throw ConfigError("threads: must be 0 (all cores) to " + std::to_string(kMaxThreads) +
+                      " (got " + std::to_string(options.threads) + ")");
+  }
   const int threads = options.threads > 0
                           ? options.threads
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
   // why: too few plumes for the threads (a sweep of few trials): split groups so every core works
-  GroupPool pool(sweeps, threads, options.make_controller, options.stop);
-  pool.add(split_groups(plume_groups(sweeps, tasks, options.share_plumes),
-                        2 * static_cast<std::size_t>(threads)));
+  std::vector<TaskGroup> groups = split_groups(plume_groups(sweeps, tasks, options.share_plumes),
+                                               2 * static_cast<std::size_t>(threads));
+  // why: a thread with no group to run would only cost its stack
+  const int workers = static_cast<int>(std::min(static_cast<std::size_t>(threads), groups.size()));
+  GroupPool pool(sweeps, workers, options.make_controller, options.stop);
+  pool.add(std::move(groups));
 
   // the calling thread hands batches to the sink and reports progress; a failing sink (say, a
-  // full disk) throws, and the pool's destructor stops the workers before the error goes up
+  // full disk) throws, and the pool's destructor stops the workers before the error goes up;
+  // a failing run stops the pool, and its error goes up once the finished rows are in the sink
   for (;;) {
     GroupPool::Batch batch = pool.take(options.progress_interval);
     if (!batch.rows.empty()) {
@@ -277,6 +313,7 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
     if (options.on_progress) {
       options.on_progress({result.computed, static_cast<std::int64_t>(tasks.size()), seconds()});
     }
+    if (batch.idle && batch.error) std::rethrow_exception(batch.error);
     if (batch.idle) break;
   }
   result.total = static_cast<std::int64_t>(tasks.size());

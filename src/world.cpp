@@ -1,6 +1,8 @@
 #include "plumetrace/world.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace plumetrace {
 
@@ -74,6 +76,15 @@ Observation Agent::sense(const Plume& plume) {
 }
 
 void Agent::act(Command command) {
+  // why: a NaN heading or curvature would carry the robot to NaN, which no wall or timeout check
+  // catches; it is the controller's error, so it stops the run rather than ending it as an outcome
+  if (!std::isfinite(command.heading) || !std::isfinite(command.curvature)) {
+    throw std::invalid_argument(
+        "the controller returned a command with a non-finite value (heading " +
+        format_number(command.heading) + ", curvature " + format_number(command.curvature) +
+        ") at t = " + format_number(time()) + " s of run seed " + std::to_string(seed_) +
+        ", trial " + std::to_string(trial_));
+  }
   command.heading = wrap_angle(command.heading + scenario_.robot.start.heading);
   if (command.give_up) {
     outcome_ = Outcome::kGaveUp;

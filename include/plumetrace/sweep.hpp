@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <optional>
@@ -99,9 +100,14 @@ struct Progress {
   double elapsed = 0.0;    ///< seconds since the start of this call
 };
 
+/// The most worker threads a campaign may ask for (--threads, threads=). why: runs are
+/// CPU-bound, so threads beyond the hardware threads only add a World's memory each; the largest
+/// machines have 768 hardware threads, and per-user thread limits (ulimit -u) are often 4096.
+inline constexpr int kMaxThreads = 1024;
+
 /// How to run a campaign.
 struct CampaignOptions {
-  /// Worker threads (0: all cores).
+  /// Worker threads (0: all cores; at most kMaxThreads).
   int threads = 0;
   /// Set from outside (a signal handler) to stop dispatching new runs.
   const std::atomic<bool>* stop = nullptr;
@@ -137,7 +143,9 @@ struct RunTask {
 };
 
 /// Runs the tasks on `threads` workers and hands results to `sink` in batches; each run is a
-/// pure function of its (point, trial), so the rows do not depend on the thread count.
+/// pure function of its (point, trial), so the rows do not depend on the thread count. Throws
+/// ConfigError for threads outside 0..kMaxThreads; when a run throws (a controller's error), the
+/// rows finished before are handed to `sink`, then the run's exception is rethrown here.
 CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                          const std::vector<RunTask>& tasks, const CampaignOptions& options,
                          const RowSink& sink);
@@ -172,10 +180,12 @@ class GroupPool {
   struct Batch {
     std::vector<RunRow> rows;  ///< rows finished since the last take
     bool idle = false;         ///< nothing queued (or stopped) and nothing running
+    std::exception_ptr error;  ///< the first exception a group threw (the pool then stopped)
   };
 
   /// Starts `threads` workers over `sweeps` (which must outlive the pool); `stop` (may be null)
-  /// is read before each group is started.
+  /// is read before each group is started. Throws std::system_error naming the thread count
+  /// when the system cannot start them all (the ones started are joined first).
   GroupPool(const std::vector<ExpandedSweep>& sweeps, int threads, ControllerFactory factory,
             const std::atomic<bool>* stop);
   /// Drops the groups not started, lets running ones finish and joins the workers.
@@ -206,6 +216,7 @@ class GroupPool {
   std::deque<TaskGroup> queue_;
   std::vector<RunRow> rows_;
   int running_ = 0;
+  std::exception_ptr error_;
   bool stop_ = false;
   bool closed_ = false;
   std::vector<std::thread> threads_;

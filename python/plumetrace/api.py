@@ -1,11 +1,14 @@
 """Scenarios, runs and sweeps: the Python face of the C++ core (no model logic here)."""
 
 import json
+import math
+import numbers
 
 from . import _core
 
 ConfigError = _core.ConfigError
 __version__ = _core.__version__
+MAX_THREADS = _core.MAX_THREADS  # the most worker threads a sweep may ask for (docs/reliability.md)
 
 
 def algorithms():
@@ -39,7 +42,7 @@ class Scenario:
 
     def update(self, settings):
         """Sets several dotted keys at once (a dict); checked together."""
-        added = [(str(k), _config_value(v)) for k, v in dict(settings).items()]
+        added = [(str(k), _config_value(str(k), v)) for k, v in dict(settings).items()]
         resolved = _load_json(_core.resolve_json(self._path, self._overrides + added))
         self._overrides.extend(added)
         object.__setattr__(self, "_resolved", resolved)
@@ -119,17 +122,32 @@ def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_int
     path, settings = _settings(scenario, algorithm, overrides, kwargs)
     if snapshot_interval is None:
         snapshot_interval = 0.25 if view is not None else 0.0
-    return _core.run(path, settings, int(seed), int(trial), bool(trace), float(snapshot_interval),
-                     controller, None if view is None else str(view))
+    return _core.run(path, settings, _whole("seed", seed, 0, 2**64 - 1),
+                     _whole("trial", trial, 0, 2**64 - 1), _flag("trace", trace),
+                     _interval("snapshot_interval", snapshot_interval), controller,
+                     None if view is None else str(view))
 
 
 def sweep(path, runs=0, threads=0, share_plumes=True, controller=None, overrides=None, **kwargs):
     """Every run of a sweep file (the format `plumetrace sweep` reads), in C++ threads with
     the GIL released. `runs`: runs per point (0: the file's); `threads`: 0 for all cores;
     `overrides`/keyword arguments change keys of the base scenario (not an axis key);
-    `controller`: as in run(). Returns SweepRows, sorted by (point, trial)."""
-    settings = [(str(k), _config_value(v)) for k, v in _dotted({**(overrides or {}), **kwargs}).items()]
-    out = _core.sweep(str(path), settings, int(runs), int(threads), bool(share_plumes), controller)
+    `controller`: as in run(). Returns SweepRows, sorted by (point, trial).
+
+    Ctrl-C, or an exception a controller raises, stops the sweep: runs not yet started are
+    dropped and the exception is raised here with the rows finished before it as its
+    ``partial_rows`` attribute (SweepRows)."""
+    settings = [(k, _config_value(k, v))
+                for k, v in _dotted({**(overrides or {}), **kwargs}).items()]
+    try:
+        out = _core.sweep(str(path), settings, _whole("runs", runs, 0, 2**31 - 1),
+                          _whole("threads", threads, 0, MAX_THREADS),
+                          _flag("share_plumes", share_plumes), controller)
+    except BaseException as e:
+        partial = getattr(e, "partial_rows", None)
+        if isinstance(partial, dict):
+            e.partial_rows = SweepRows(partial["name"], partial["columns"])
+        raise
     return SweepRows(out["name"], out["columns"])
 
 
@@ -184,13 +202,42 @@ def _dotted(kwargs):
     return {k.replace("__", "."): v for k, v in kwargs.items()}
 
 
-def _config_value(value):
+def _config_value(key, value):
     # why: the core takes bool, int, float or str; NumPy scalars and the like become those
     if isinstance(value, (bool, int, float, str)):
         return value
     if hasattr(value, "item"):
-        return value.item()
-    raise ConfigError(f"value {value!r} is not a number, bool or string")
+        try:
+            return value.item()
+        except Exception:
+            pass
+    raise ConfigError(f"{key}: value {value!r} ({type(value).__name__}) is not a number, bool "
+                      "or string")
+
+
+def _whole(name, value, lo, hi):
+    # why: int() would turn seed=1.7 into 1 and True into 1 without a word
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be an int, got {type(value).__name__} {value!r}")
+    value = int(value)
+    if not lo <= value <= hi:
+        raise ValueError(f"{name} must be an int from {lo} to {hi}, got {value}")
+    return value
+
+
+def _flag(name, value):
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        return bool(value)
+    raise TypeError(f"{name} must be True or False, got {type(value).__name__} {value!r}")
+
+
+def _interval(name, value):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a number, got {type(value).__name__} {value!r}")
+    value = float(value)
+    if not (math.isfinite(value) and value >= 0.0):
+        raise ValueError(f"{name} must be a finite number >= 0, got {value}")
+    return value
 
 
 def _settings(scenario, algorithm, overrides, kwargs):
@@ -203,4 +250,4 @@ def _settings(scenario, algorithm, overrides, kwargs):
     extra = _dotted({**(overrides or {}), **kwargs})
     if algorithm is not None:
         extra["controller.algorithm"] = algorithm
-    return path, settings + [(k, _config_value(v)) for k, v in extra.items()]
+    return path, settings + [(k, _config_value(k, v)) for k, v in extra.items()]

@@ -7,11 +7,15 @@ built-in ones see (docs/model.md section 7.1):
 - ``observation.time`` (s since release), ``observation.odor`` (bool),
   ``observation.odometry`` (x, y, heading relative to the release pose), ``observation.odometer``;
 - ``wind.measure_wind_body()``: one noisy wind sample (m/s, robot frame); take it only when the
-  algorithm needs it (each call counts in ``wind_samples``).
+  algorithm needs it (each call counts in ``wind_samples``). The probe measures only during the
+  ``step()`` call that received it: keep the sample, not the probe (a kept probe raises
+  RuntimeError).
 
 It answers with a ``Command``: ``go(heading)`` (turn on the spot, then drive straight),
 ``turn_to(heading)``, ``curve(curvature)`` (arc at the wheel-speed limit), ``stop()`` or
-``abandon()`` (give up; the run fails). Headings are in the odometry frame.
+``abandon()`` (give up; the run fails). Headings are in the odometry frame; a heading or
+curvature that is not finite raises ValueError where the command is made, and anything but a
+Command returned from ``step`` raises TypeError.
 
 Pass a factory ``f(scenario_dict, rng)`` to ``plumetrace.run(controller=...)`` or
 ``plumetrace.sweep(controller=...)``: it is called once per run with the resolved scenario and

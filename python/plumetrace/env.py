@@ -31,7 +31,7 @@ import math
 import numpy as np
 
 from . import _core
-from .api import _settings
+from .api import _settings, _whole
 
 
 class Box:
@@ -67,7 +67,7 @@ class PlumeEnv:
         self._path, self._settings = _settings(scenario, None, None, overrides)
         self.wind_every_step = wind_every_step
         self.reward_fn = reward_fn
-        self.seed = seed
+        self.seed = _whole("seed", seed, 0, 2**64 - 1)
         self.trial = 0
         inf = math.inf
         self.observation_space = Box([0, -inf, -inf, -math.pi, 0, -inf, -inf],
@@ -78,9 +78,9 @@ class PlumeEnv:
 
     def reset(self, seed=None, options=None):
         if seed is not None:
-            self.seed = int(seed)
+            self.seed = _whole("seed", seed, 0, 2**64 - 1)
             self._next_trial = 0
-        self.trial = int((options or {}).get("trial", self._next_trial))
+        self.trial = _whole("trial", (options or {}).get("trial", self._next_trial), 0, 2**64 - 1)
         self._next_trial = self.trial + 1
         self._world = _core.World(self._path, self._settings, self.seed, self.trial)
         return self._observe(), self._info()
@@ -124,5 +124,11 @@ class PlumeEnv:
 def _command(action):
     if isinstance(action, _core.Command):
         return action
-    heading = float(np.asarray(action, dtype=np.float64).reshape(-1)[0])
-    return _core.Command.go(heading)
+    try:
+        values = np.asarray(action, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError, OverflowError):
+        values = np.empty(0)
+    if values.size != 1:
+        raise TypeError("an action is a heading (a number or an array of one) or a Command, got "
+                        f"{type(action).__name__} {action!r}"[:300])
+    return _core.Command.go(float(values[0]))

@@ -1,0 +1,407 @@
+"""Property checks of the Python layer (hypothesis): any config dict, any sweep arguments and any
+controller behaviour give a result or a Python exception that names the problem, never a dead
+interpreter. test_properties.py runs each check_* in a child interpreter, so that a crash fails
+the test instead of ending pytest; the last line a check prints names the example it was on.
+
+PLUMETRACE_PROPERTIES=long: ten times the examples, drawn at random (the default draws the same
+examples every time, so that the suite is repeatable)."""
+
+import math
+import os
+import tempfile
+import time
+from datetime import timedelta
+from pathlib import Path
+
+import numpy as np
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import plumetrace as pt
+from plumetrace.controllers import Command
+
+LONG = os.environ.get("PLUMETRACE_PROPERTIES") == "long"
+
+
+def bounded(examples):
+    """Settings of a check: `examples` examples (ten times more, at random, when LONG)."""
+    # why: no deadline per example on a shared machine; a hang is caught by the child's timeout
+    return settings(max_examples=examples * (10 if LONG else 1), derandomize=not LONG,
+                    database=None, deadline=timedelta(seconds=30),
+                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+
+
+def show(kind, example):
+    """Prints the example about to run (the last line names it when the interpreter dies)."""
+    print(f"{kind}: {example!r}"[:2000], flush=True)
+
+
+# -- config dicts -------------------------------------------------------------------------------
+
+def _flat(prefix, tree):
+    for k, v in tree.items():
+        if isinstance(v, dict):
+            yield from _flat(f"{prefix}{k}.", v)
+        else:
+            yield f"{prefix}{k}", v
+
+
+DEFAULTS = dict(_flat("", pt.Scenario().to_dict()))
+KEYS = sorted(DEFAULTS)
+NAMES = sorted({v for v in DEFAULTS.values() if isinstance(v, str)} | set(pt.algorithms())
+               | {"paper-literal", "disc", "ball", "constant", "surge-spiral"})
+
+# why: with these left alone, a run lasts at most the sweep files' 2 s timeout at the default
+# step; the rest (steps, filaments, samples per reading) decide how long a run takes
+SLOW_KEYS = {"sim.dt", "sim.warmup", "supervisor.timeout", "plume.release_rate",
+             "plume.capacity", "wind_sensor.samples"}
+RUN_KEYS = [k for k in KEYS if k not in SLOW_KEYS]
+
+
+class BadStr:
+    """An object whose str() raises."""
+
+    def __str__(self):
+        raise ValueError("bad str")
+
+    def __repr__(self):
+        return "BadStr()"
+
+
+def plausible(key):
+    """Values near a key's default: a multiple of a number, another whole number, a name."""
+    default = DEFAULTS[key]
+    if isinstance(default, str):
+        return st.sampled_from(NAMES)
+    if isinstance(default, int):
+        return st.integers(-2, 2 * default + 2)
+    return st.one_of(st.floats(-3.0, 3.0).map(lambda f: f * (default or 1.0)),
+                     st.floats(-100.0, 100.0), st.just(default))
+
+
+def config_dicts(keys=KEYS, max_size=4):
+    """Dicts of dotted keys: half of them near valid, the rest anything."""
+    near = st.sampled_from(keys).flatmap(lambda k: st.tuples(st.just(k), plausible(k)))
+    anything = st.tuples(config_keys(keys), config_values)
+    return st.lists(st.one_of(near, anything), max_size=max_size).map(dict)
+
+
+def config_keys(keys=KEYS):
+    return st.one_of(st.sampled_from(keys), st.sampled_from(keys).map(str.upper),
+                     st.sampled_from(keys).map(lambda k: k + ".x"),
+                     st.sampled_from(keys).map(lambda k: k.split(".")[0]),
+                     st.lists(st.text(min_size=0, max_size=8), min_size=1, max_size=40)
+                     .map(".".join),
+                     st.text(max_size=30))
+
+
+numbers = st.one_of(st.integers(), st.integers(-10, 10), st.floats(),
+                    st.floats(-1e3, 1e3, allow_nan=False), st.sampled_from([math.nan, math.inf,
+                                                                            -math.inf, 0.0, -0.0,
+                                                                            5e-324, 1e308]))
+config_values = st.one_of(
+    numbers, st.booleans(), st.none(), st.sampled_from(NAMES), st.text(max_size=20),
+    st.integers().map(str), st.floats().map(str),
+    st.sampled_from([np.float64(0.5), np.int64(3), np.bool_(True), np.float32(math.nan),
+                     np.array([1.0, 2.0]), [1, 2], {"a": 1}, (0.5,), b"0.5", BadStr(),
+                     object(), 1 + 2j]))
+
+
+def _names_a_key(error, keys):
+    # why: a check across keys (the start inside the arena) may name another key than the one set
+    text = str(error)
+    return any(str(k) in text or repr(k) in text for k in [*keys, *KEYS])
+
+
+@bounded(1000)
+@given(config_dicts())
+def check_config_dicts_resolve_or_raise_naming_a_key(settings_):
+    show("config", settings_)
+    s = pt.Scenario()
+    try:
+        s.update(settings_)
+    except (pt.ConfigError, TypeError, ValueError) as e:
+        assert _names_a_key(e, settings_), f"{type(e).__name__}: {e}"
+        return
+    # what was taken reads back
+    for key, value in settings_.items():
+        got = s[key]
+        assert got is not None
+
+
+@bounded(150)
+@given(config_dicts(RUN_KEYS, 3), st.integers(0, 2**64 - 1), st.booleans())
+def check_runs_under_any_overrides_give_a_result_or_name_a_key(overrides, seed, trace):
+    show("run", (overrides, seed, trace))
+    fixed = {"sim.warmup": 0.0, "supervisor.timeout": 2.0}
+    try:
+        r = pt.run(seed=seed, trace=trace, overrides={**overrides, **fixed})
+    except (pt.ConfigError, TypeError, ValueError) as e:
+        assert _names_a_key(e, overrides), f"{type(e).__name__}: {e}"
+        return
+    assert r["outcome"] in ("success", "wall", "timeout", "gave_up")
+
+
+# -- sweep arguments ----------------------------------------------------------------------------
+
+SWEEP = """
+name = "p"
+runs = 1
+seed = 3
+
+[set]
+sim.warmup = 0.0
+supervisor.timeout = 2.0
+
+[[axis]]
+key = "wind_sensor.sigma_a"
+values = [0.0, 0.3]
+"""
+
+_folder = Path(tempfile.mkdtemp(prefix="plumetrace_properties_"))
+(_folder / "ok.toml").write_text(SWEEP)
+(_folder / "empty.toml").write_text("")
+(_folder / "junk.toml").write_text("name = [[[\n\x00\xff")
+(_folder / "axisless.toml").write_text('name = "n"\nruns = 1\n')
+PATHS = [_folder / "ok.toml", str(_folder / "ok.toml"), _folder / "empty.toml",
+         _folder / "junk.toml", _folder / "axisless.toml", _folder / "missing.toml", _folder]
+
+# why: a valid count runs that many runs, so valid counts stay small; the others are refused
+# before any run (more than 10^7 runs in all, or not a whole number >= 0)
+# (three branches of four valid)
+valid_runs = st.integers(0, 2)
+run_counts = st.one_of(valid_runs, valid_runs, valid_runs,
+                       st.integers(max_value=-1), st.integers(min_value=5_000_001),
+                       st.sampled_from([1.0, 1.5, math.nan, True, None, "2", np.int64(1)]))
+valid_threads = st.sampled_from([0, 1, 2, 3, pt.MAX_THREADS, np.int64(2)])
+thread_counts = st.one_of(valid_threads, valid_threads, valid_threads,
+                          st.one_of(st.integers(max_value=-1),
+                                    st.integers(min_value=pt.MAX_THREADS + 1),
+                                    st.sampled_from([2.0, True, None, "2"])))
+valid_flags = st.sampled_from([True, False, np.bool_(False)])
+flags = st.one_of(valid_flags, valid_flags, valid_flags,
+                  st.sampled_from([0, 1, "yes", None]))
+paths = st.one_of(st.sampled_from(PATHS[:2]), st.sampled_from(PATHS[:2]), st.sampled_from(PATHS))
+
+
+@bounded(300)
+@given(paths, run_counts, thread_counts, flags,
+       st.one_of(st.just({}), st.just({}), config_dicts(RUN_KEYS, 2)))
+def check_sweeps_under_any_arguments_give_rows_or_name_the_argument(path, runs, threads, share,
+                                                                      overrides):
+    show("sweep", (path, runs, threads, share, overrides))
+    names = ["runs", "threads", "share_plumes", str(path), *map(str, overrides)]
+    try:
+        rows = pt.sweep(path, runs=runs, threads=threads, share_plumes=share, overrides=overrides)
+    except (pt.ConfigError, TypeError, ValueError, OSError) as e:
+        assert any(n in str(e) for n in names), f"{type(e).__name__}: {e}"
+        return
+    assert len(rows) == 2 * (runs or 1)
+    assert set(rows["outcome"]) <= {"success", "wall", "timeout", "gave_up"}
+
+
+# -- controller behaviour -----------------------------------------------------------------------
+
+class Refused(Exception):
+    """An exception of the controller's own."""
+
+
+EXCEPTIONS = {"ValueError": ValueError, "KeyError": KeyError, "RuntimeError": RuntimeError,
+              "ZeroDivisionError": ZeroDivisionError, "Refused": Refused,
+              "KeyboardInterrupt": KeyboardInterrupt}
+JUNK = {"None": None, "0": 0, "1.5": 1.5, "'go'": "go", "(1, 2)": (1, 2), "[]": [],
+        "Command": Command, "True": True, "object": object()}
+JUNK_TYPE = {"None": "NoneType", "0": "int", "1.5": "float", "'go'": "str", "(1, 2)": "tuple",
+             "[]": "list", "Command": "pybind11_type", "True": "bool", "object": "object"}
+
+# one step's behaviour: (what, argument)
+actions = st.one_of(
+    st.tuples(st.sampled_from(["go", "turn_to", "curve"]), st.floats()),
+    st.tuples(st.sampled_from(["stop", "abandon", "keep_probe", "use_kept", "sleep"]), st.none()),
+    st.tuples(st.just("measure"), st.integers(0, 3)),
+    st.tuples(st.just("raise"), st.sampled_from(sorted(EXCEPTIONS))),
+    st.tuples(st.just("junk"), st.sampled_from(sorted(JUNK))),
+    st.tuples(st.just("state"), st.sampled_from(["lost", "", "\u00e9t\u00e9", 7, "bad"])),
+    st.tuples(st.just("losses"), st.one_of(st.integers(), st.integers(0, 5),
+                                           st.sampled_from(["2", 2.0, True, None,
+                                                            np.int64(1)]))))
+
+
+def expected_error(plan, factory):
+    """What the plan makes a run raise: (type, text the message starts with), or None."""
+    if factory == "raise":
+        return ValueError, "the factory says no"
+    if factory == "none":
+        return TypeError, "the controller factory must return an object with a step"
+    kept = False
+    for what, arg in plan:
+        if what in ("go", "turn_to", "curve") and not math.isfinite(arg):
+            name = "curvature" if what == "curve" else "heading"
+            return ValueError, f"Command.{what}: {name} must be a finite number"
+        if what == "abandon":
+            return None
+        if what == "keep_probe":
+            kept = True
+        if what == "use_kept" and kept:
+            return RuntimeError, "the wind probe is valid only during the step()"
+        if what == "raise":
+            return EXCEPTIONS[arg], f"raised by plan {arg}"
+        if what == "junk":
+            return TypeError, f"controller.step must return a Command, got {JUNK_TYPE[arg]}"
+        if what == "state" and arg == "bad":
+            return ValueError, "bad str"
+        if what == "losses":
+            value = arg
+            if isinstance(value, (bool, str, float)) or value is None:
+                return TypeError, "controller.losses must be an int, got"
+            if not 0 <= int(value) <= 2**31 - 1:
+                return ValueError, "controller.losses must be an int from 0 to"
+    return None
+
+
+def controller_of(plan, factory_kind, kept):
+    """A controller factory following `plan` step by step (then standing still); probes it
+    keeps go to `kept`."""
+
+    class Planned:
+        state = "python"
+        losses = 0
+
+        def __init__(self, scenario, rng):
+            self.k = 0
+            self.kept = None
+
+        def step(self, obs, wind):
+            what, arg = plan[self.k] if self.k < len(plan) else ("stop", None)
+            self.k += 1
+            if what in ("go", "turn_to", "curve"):
+                return getattr(Command, what)(arg)
+            if what == "abandon":
+                return Command.abandon()
+            if what == "keep_probe":
+                self.kept = wind
+                kept.append(wind)
+            elif what == "use_kept" and self.kept is not None:
+                self.kept.measure_wind_body()
+            elif what == "sleep":
+                time.sleep(0.0005)
+            elif what == "measure":
+                for _ in range(arg):
+                    x, y = wind.measure_wind_body()
+                    assert math.isfinite(x) and math.isfinite(y)
+            elif what == "raise":
+                raise EXCEPTIONS[arg](f"raised by plan {arg}")
+            elif what == "junk":
+                return JUNK[arg]
+            elif what == "state":
+                self.state = BadStr() if arg == "bad" else arg
+            elif what == "losses":
+                self.losses = arg
+            return Command.stop()
+
+    def factory(scenario, rng):
+        if factory_kind == "raise":
+            raise ValueError("the factory says no")
+        if factory_kind == "none":
+            return None
+        return Planned(scenario, rng)
+
+    return factory
+
+
+def _check_outcome(call, plan, factory_kind):
+    kept = []
+    expected = expected_error(plan, factory_kind)
+    try:
+        result = call(controller_of(plan, factory_kind, kept))
+    except BaseException as e:  # noqa: B902 -- KeyboardInterrupt from a controller included
+        assert expected is not None, f"unexpected {type(e).__name__}: {e}"
+        kind, text = expected
+        assert type(e) is kind and str(e).strip("'").startswith(text), (
+            f"expected {kind.__name__}: {text}..., got {type(e).__name__}: {e}")
+        result = None
+    else:
+        assert expected is None, f"expected {expected}, got a result"
+    # a probe kept past its step refuses, whenever it is called
+    for probe in kept:
+        try:
+            probe.measure_wind_body()
+            raise AssertionError("a kept probe measured after its step")
+        except RuntimeError as e:
+            assert "valid only during the step()" in str(e)
+    return result
+
+
+plans = st.lists(actions, max_size=30)
+factories = st.sampled_from(["ok", "ok", "ok", "ok", "raise", "none"])
+
+
+@bounded(300)
+@given(plans, factories, st.booleans())
+def check_runs_with_any_controller_give_a_result_or_its_error(plan, factory_kind, trace):
+    show("run controller", (plan, factory_kind, trace))
+    r = _check_outcome(lambda f: pt.run(controller=f, trace=trace, sim__warmup=0.0,
+                                        supervisor__timeout=2.0), plan, factory_kind)
+    if r is not None:
+        assert r["outcome"] in ("timeout", "gave_up", "wall", "success")
+
+
+@bounded(300)
+@given(plans, factories, st.integers(1, 3), st.booleans())
+def check_sweeps_with_any_controller_give_rows_or_its_error(plan, factory_kind, threads, share):
+    show("sweep controller", (plan, factory_kind, threads, share))
+    rows = _check_outcome(lambda f: pt.sweep(PATHS[0], runs=2, threads=threads,
+                                             share_plumes=share, controller=f),
+                          plan, factory_kind)
+    if rows is not None:
+        assert len(rows) == 4
+
+
+@bounded(500)
+@given(st.sampled_from(["go", "turn_to", "curve"]), st.one_of(st.floats(), numbers))
+def check_commands_take_finite_numbers_and_refuse_the_rest(kind, value):
+    show("command", (kind, value))
+    try:
+        c = getattr(Command, kind)(value)
+    except ValueError as e:
+        assert not math.isfinite(value) and "finite" in str(e)
+    except TypeError:
+        assert not isinstance(value, float)  # a huge int is no double
+    else:
+        assert math.isfinite(float(value))
+        assert c.heading == (0.0 if kind == "curve" else float(value))
+
+
+# -- a learning agent's actions (plumetrace.env) -------------------------------------------------
+
+env_actions = st.one_of(st.floats(), st.integers(), st.lists(st.floats(), max_size=3),
+                        st.sampled_from([None, "0.5", np.array([0.5]), np.array([[0.1]]),
+                                         np.array([]), Command.stop(), Command.abandon(),
+                                         Command.curve(2.0), object()]))
+
+
+@bounded(150)
+@given(st.one_of(st.integers(0, 2**64 - 1), st.integers(), st.floats(), st.none()),
+       st.lists(env_actions, max_size=40))
+def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions):
+    from plumetrace.env import PlumeEnv
+
+    show("env", (seed, actions))
+    env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=2.0)
+    try:
+        env.reset(seed=seed)
+    except (TypeError, ValueError) as e:
+        assert "seed" in str(e)
+        return
+    for action in actions:
+        try:
+            obs, reward, terminated, truncated, info = env.step(action)
+        except (TypeError, ValueError) as e:
+            assert "action" in str(e) or "finite" in str(e), f"{type(e).__name__}: {e}"
+            continue
+        except RuntimeError as e:
+            assert "reset()" in str(e)
+            break
+        assert obs.shape == (7,) and np.all(np.isfinite(obs[1:5]))
+        wind = env.measure_wind()
+        assert all(math.isfinite(w) for w in wind)

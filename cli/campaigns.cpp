@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -565,6 +566,10 @@ int exit_code(const std::exception_ptr& error) {
     return kIoFailure;
   } catch (const IoError&) {
     return kIoFailure;
+  } catch (const std::bad_alloc&) {
+    return kOutOfMemory;
+  } catch (...) {
+    return kInternalError;
   }
 }
 
@@ -572,8 +577,21 @@ int report_error(const std::exception_ptr& error, const std::string& prefix) {
   const int code = exit_code(error);
   try {
     std::rethrow_exception(error);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "plumetrace: error: %sout of memory; results already stored are kept (lower "
+                 "--threads, plume.capacity or the grid, or raise the memory limit)\n",
+                 prefix.c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "plumetrace: error: %s%s\n", prefix.c_str(), e.what());
+    if (code == kInternalError) {
+      std::fprintf(stderr, "plumetrace: internal error: %s%s (please report it)\n",
+                   prefix.c_str(), e.what());
+    } else {
+      std::fprintf(stderr, "plumetrace: error: %s%s\n", prefix.c_str(), e.what());
+    }
+  } catch (...) {
+    std::fprintf(stderr, "plumetrace: internal error: %san unknown exception (please report it)\n",
+                 prefix.c_str());
   }
   return code;
 }

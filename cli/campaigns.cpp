@@ -584,8 +584,8 @@ int report_error(const std::exception_ptr& error, const std::string& prefix) {
                  prefix.c_str());
   } catch (const std::exception& e) {
     if (code == kInternalError) {
-      std::fprintf(stderr, "plumetrace: internal error: %s%s (please report it)\n",
-                   prefix.c_str(), e.what());
+      std::fprintf(stderr, "plumetrace: internal error: %s%s (please report it)\n", prefix.c_str(),
+                   e.what());
     } else {
       std::fprintf(stderr, "plumetrace: error: %s%s\n", prefix.c_str(), e.what());
     }

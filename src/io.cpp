@@ -1,6 +1,9 @@
 #include "plumetrace/io.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -52,16 +55,50 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
   }
 }
 
-toml::table parse_toml_file(const std::string& path, const std::string& what) {
-  std::error_code ec;
-  std::ifstream in(path);
-  if (!std::filesystem::is_regular_file(path, ec) || !in) {
-    throw ConfigError("cannot read " + what + " '" + path + "'");
+// reads the whole of a regular file into `text`; false with the reason in `why` otherwise
+// why: the type is checked on the open descriptor, opened without blocking, so that a FIFO or a
+// device named as an input neither blocks open() or read() for ever nor is swapped in between
+// a check and the open (issue 13, F8)
+bool read_regular_file(const std::string& path, std::string& text, std::string& why) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    why = std::strerror(errno);
+    return false;
   }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    why = std::strerror(errno);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    why = S_ISDIR(st.st_mode) ? "a folder, not a file" : "not a regular file";
+    return false;
+  }
+  text.clear();
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n == 0) return true;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      why = std::strerror(errno);
+      return false;
+    }
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+toml::table parse_toml_file(const std::string& path, const std::string& what) {
+  std::string text, why;
+  if (!read_regular_file(path, text, why)) {
+    throw ConfigError("cannot read " + what + " '" + path + "': " + why);
+  }
   try {
-    return toml::parse(buffer.str(), path);
+    return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column
@@ -348,14 +385,13 @@ RecordedRun read_trace(const std::string& path) {
                       "': a CSV trace carries no configuration; write the trace as .json "
                       "(plumetrace run --trace run.json)");
   }
-  std::ifstream in(path);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !in) {
-    throw IoError("cannot read trace '" + path + "'");
+  std::string text, why;
+  if (!read_regular_file(path, text, why)) {
+    throw IoError("cannot read trace '" + path + "': " + why);
   }
   RecordedRun run;
   try {
-    const json doc = json::parse(in);
+    const json doc = json::parse(text);
     if (!doc.is_object() || !doc.contains("plumetrace_trace")) {
       throw ConfigError("trace '" + path + "': not a plumetrace trace (no 'plumetrace_trace' key)");
     }

@@ -22,7 +22,10 @@ using testing::read_file;
 const std::string kCli = PLUMETRACE_CLI;
 
 // runs the command with `args`, capturing stdout, stderr and the exit code
-Output cli(const std::string& args) { return testing::run_command(kCli + " " + args); }
+// (under `timeout`: a regression that hangs fails the test instead of the suite)
+Output cli(const std::string& args) {
+  return testing::run_command("timeout 120 " + kCli + " " + args);
+}
 
 // runs the command under bash with `limits` (ulimit options) set first
 Output cli_limited(const std::string& limits, const std::string& args) {
@@ -43,6 +46,37 @@ TEST(CliReliability, OutOfMemoryIsReportedWithExitThreeNotAnAbort) {
   EXPECT_EQ(o.code, 3) << o.err;
   EXPECT_EQ(o.out, "");
   EXPECT_NE(o.err.find("out of memory"), std::string::npos) << o.err;
+}
+
+// a FIFO in place of a file: made fresh, so that nothing has written to it
+std::string make_fifo(const std::string& suffix) {
+  const std::string path = testing::temp_path("fifo", suffix);
+  EXPECT_EQ(::mkfifo(path.c_str(), 0600), 0) << path;
+  return path;
+}
+
+// F8: a FIFO named as any input is refused at once instead of blocking for ever (`timeout` only
+// keeps a regression from hanging the suite)
+TEST(CliReliability, FifoInputsAreRefusedWithoutBlocking) {
+  const std::string scenario = make_fifo(".toml");
+  expect_refused(cli("config " + scenario), "'" + scenario + "': not a regular file", "config");
+
+  const std::string sweep = make_fifo(".toml");
+  expect_refused(cli("sweep " + sweep), "'" + sweep + "': not a regular file", "sweep");
+
+  // a sweep file whose base scenario is a FIFO
+  const std::string base = make_fifo(".toml");
+  const std::string file =
+      testing::write_temp("sweep", ".toml",
+                          "name = \"fifo\"\nscenario = \"" + base +
+                              "\"\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
+  expect_refused(cli("export " + file + " --store none.sqlite --out none"),
+                 "'" + base + "': not a regular file", "export");
+
+  const std::string trace = make_fifo(".json");
+  const Output view = cli("view " + trace);
+  EXPECT_EQ(view.code, 3) << view.err;
+  EXPECT_NE(view.err.find("'" + trace + "': not a regular file"), std::string::npos) << view.err;
 }
 
 }  // namespace

@@ -79,5 +79,33 @@ TEST(CliReliability, FifoInputsAreRefusedWithoutBlocking) {
   EXPECT_NE(view.err.find("'" + trace + "': not a regular file"), std::string::npos) << view.err;
 }
 
+// F5: keys nested without end are refused naming the file, before they reach the stack
+TEST(CliReliability, DeeplyNestedKeysAreRefusedNamingTheFile) {
+  // 30000 and 300000 dotted parts: a stack overflow in flatten, then in toml::parse
+  for (const int parts : {30000, 300000}) {
+    std::string key = "a";
+    for (int i = 0; i < parts; ++i) key += ".b";
+    const std::string scenario = testing::write_temp("deep", ".toml", key + " = 1\n");
+    expect_refused(cli("config " + scenario), scenario + ":1: a key has more than 16 dotted parts",
+                   "config");
+    const std::string sweep = testing::write_temp(
+        "deep", ".toml",
+        "name = \"deep\"\n[set]\n" + key + " = 1\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
+    expect_refused(cli("sweep " + sweep), sweep + ":3: a key has more than 16 dotted parts",
+                   "sweep");
+  }
+  // quoted parts and a table header count as well
+  std::string quoted = "[a";
+  for (int i = 0; i < 20; ++i) quoted += ".\"b.c\"";
+  const std::string header = testing::write_temp("header", ".toml", "x = 1.5\n" + quoted + "]\n");
+  expect_refused(cli("config " + header), header + ":2: a key has more than 16 dotted parts",
+                 "header");
+  // inline tables nest too
+  std::string inner = "1";
+  for (int i = 0; i < 20; ++i) inner = "{ b = " + inner + " }";
+  const std::string nested = testing::write_temp("inline", ".toml", "a = " + inner + "\n");
+  expect_refused(cli("config " + nested), "is nested more than 16 levels deep", "inline");
+}
+
 }  // namespace
 }  // namespace plumetrace

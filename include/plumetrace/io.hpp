@@ -32,6 +32,10 @@ void write_text_file(const std::string& path, std::string_view text);
 /// Throws IoError naming `path` when it cannot be written (it tries, and leaves nothing behind).
 void check_writable(const std::string& path);
 
+/// The most dotted segments a key in a TOML file may have (config keys have two): deeper keys
+/// are refused, naming the file and the key, before they are walked.
+inline constexpr int kMaxKeyDepth = 16;
+
 /// Reads a TOML scenario file into settings (one per key, in file order); throws ConfigError
 /// naming the file when it cannot be read or is not valid TOML (with line and column).
 std::vector<Setting> read_scenario_file(const std::string& path);

@@ -107,5 +107,55 @@ TEST(CliReliability, DeeplyNestedKeysAreRefusedNamingTheFile) {
   expect_refused(cli("config " + nested), "is nested more than 16 levels deep", "inline");
 }
 
+// F9: the release rate has an upper bound, per second and per step, so that no run hangs and
+// the count per step always converts to an integer
+TEST(CliReliability, ReleaseRateIsBoundedPerSecondAndPerStep) {
+  for (const char* rate : {"1e20", "6e20", "1000001"}) {
+    expect_refused(cli(std::string("config --set plume.release_rate=") + rate),
+                   "plume.release_rate: must be a number > 0 and <= 1e6", rate);
+  }
+  expect_refused(cli("config --set plume.release_rate=1e6 --set sim.dt=2"),
+                 "plume.release_rate: must release at most 1e6 filaments per step of sim.dt (got "
+                 "1e6 /s * 2 s = 2e6)",
+                 "per step");
+  EXPECT_EQ(cli("config --set plume.release_rate=1e6").code, 0);
+}
+
+// F23: a time step so small that a run takes more than 1e7 steps is refused, naming the count
+TEST(CliReliability, TinyTimeStepsAreRefusedNamingTheStepCount) {
+  // the issue's reproduction: a two-hour run without a word
+  expect_refused(cli("run --set sim.dt=1.3e-6"), "must be at most 1e7 steps of sim.dt", "issue");
+  expect_refused(cli("run --set sim.dt=1.3e-6 --set sim.warmup=0"),
+                 "supervisor.timeout: must be at most 1e7 steps of sim.dt (got 1200 s / 1.3e-6 s "
+                 "= 9.23077e8 steps)",
+                 "timeout");
+  expect_refused(cli("run --set sim.dt=1e-6 --set supervisor.timeout=1"),
+                 "sim.warmup: must be at most 1e7 steps of sim.dt (got 20 s / 1e-6 s = 2e7 steps)",
+                 "warm-up");
+  expect_refused(
+      cli("probe --points 8,0,0 --set sim.dt=1e-6 --set sim.warmup=0 --set supervisor.timeout=1 "
+          "--duration 11"),
+      "--warmup, --duration: must be at most 1e7 steps", "probe");
+}
+
+// F3: a ring larger than any run needs is refused before it is allocated (exit 2, even under a
+// 2 GB memory limit), rather than ending in std::bad_alloc
+TEST(CliReliability, HugeRingIsRefusedBeforeItIsAllocated) {
+  const Output o = cli_limited("-v 2000000", "run --set plume.capacity=100000000 --json");
+  expect_refused(o, "plume.capacity: must be an integer >= 1 and <= 10000000", "capacity");
+}
+
+// probe and trace intervals far beyond the run are what they say, not an integer conversion out
+// of range (which sampled or snapshotted every step)
+TEST(CliReliability, HugeIntervalsAreNotConvertedOutOfRange) {
+  expect_refused(cli("probe --points 8,0,0 --duration 1 --interval 1e300"),
+                 "--duration: must be at least --interval", "probe");
+  const std::string trace = testing::temp_path("huge", ".json");
+  const Output o = cli("run --set supervisor.timeout=1 --snapshot-interval 1e300 --trace " + trace);
+  ASSERT_EQ(o.code, 0) << o.err;
+  // only the snapshot at release
+  EXPECT_EQ(json::parse(read_file(trace))["snapshots"].size(), 1u);
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -200,6 +200,7 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
   for (std::size_t i = 1; i < readings.size(); ++i) {
     for (auto& s : reading_sets(sets, readings[i], false)) sweeps.push_back(std::move(s));
   }
+  check_campaign_size(sweeps, cmd.runs);
   std::filesystem::create_directories(cmd.flags.out);
   Store store(cmd.flags.out + "/results.sqlite", campaign_definition(sweeps), version(),
               cmd.flags.fresh);
@@ -246,6 +247,7 @@ int run_sensitivity_command(const SensitivityCommand& cmd) {
        sensitivity_sweeps(read_sets(experiments_dir(cmd.flags.experiments)), cmd.runs)) {
     sweeps.push_back(expand_sweep(def, {}));
   }
+  check_campaign_size(sweeps, cmd.runs);
   std::filesystem::create_directories(cmd.flags.out);
   Store store(cmd.flags.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(),
               cmd.flags.fresh);
@@ -308,6 +310,7 @@ SweepPlan plan_sweep(const SweepCommand& cmd) {
   const SweepDef def = read_sweep_file(cmd.file);
   plan.name = def.name;
   plan.sweeps = {expand_sweep(def, parse_sets(cmd.sets))};
+  check_campaign_size(plan.sweeps, cmd.runs);
   plan.out = cmd.out.empty() ? "out/" + def.name : cmd.out;
   if (!cmd.store.empty()) {
     plan.store_path = cmd.store;

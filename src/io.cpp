@@ -566,7 +566,10 @@ SweepDef read_sweep_file(const std::string& path) {
       def.scenario_path = (p.is_absolute() ? p : folder / p).lexically_normal().string();
     } else if (key == "runs" && node.is_integer()) {
       const auto runs = node.as_integer()->get();
-      if (runs < 1 || runs > 100000000) fail("runs: must be an integer >= 1");
+      if (runs < 1 || runs > kMaxCampaignRuns) {
+        fail("runs: must be an integer >= 1 and <= " + std::to_string(kMaxCampaignRuns) + " (got " +
+             std::to_string(runs) + ")");
+      }
       def.runs = static_cast<int>(runs);
     } else if (key == "seed" && node.is_integer()) {
       const auto seed = node.as_integer()->get();

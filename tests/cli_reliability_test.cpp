@@ -157,5 +157,75 @@ TEST(CliReliability, HugeIntervalsAreNotConvertedOutOfRange) {
   EXPECT_EQ(json::parse(read_file(trace))["snapshots"].size(), 1u);
 }
 
+// a sweep file of `axes` axes of `values` values each (keys that accept any number)
+std::string grid_sweep(int axes, int values, int runs) {
+  const char* keys[] = {"arena.x_min",
+                        "source.z",
+                        "wind.vy",
+                        "wind.vz",
+                        "odor.height",
+                        "surge_spiral.d_gap",
+                        "surge_spiral.d_lost",
+                        "surge_cast.d_cast",
+                        "surge_cast.d_lost",
+                        "casting.d_lost",
+                        "robot.axle",
+                        "robot.radius",
+                        "plume.amount",
+                        "odor.threshold",
+                        "plume.initial_width",
+                        "source.radius"};
+  std::string text = "name = \"grid\"\nruns = " + std::to_string(runs) + "\n";
+  for (int a = 0; a < axes; ++a) {
+    text += "[[axis]]\nkey = \"" + std::string(keys[a]) + "\"\nvalues = [";
+    for (int v = 0; v < values; ++v) text += (v ? ", " : "") + std::to_string(0.01 + 0.001 * v);
+    text += "]\n";
+  }
+  return testing::write_temp("grid", ".toml", text);
+}
+
+// F10: the grid's size is checked, without overflow, before anything is expanded or written
+TEST(CliReliability, GridsAboveTheLimitAreRefusedBeforeTheStoreIsTouched) {
+  const std::string out = testing::temp_path("out", "");
+  const std::string store = out + ".sqlite";
+  // 16 axes of 16 values: 2^64 points, which overflowed to 0 (exit 0, empty exports)
+  const std::string huge = grid_sweep(16, 16, 1);
+  expect_refused(cli("sweep " + huge + " --out " + out + " --store " + store),
+                 huge +
+                     ": the grid has 16 x 16 x 16 x 16 x 16 x 16 x 16 x 16 x 16 x 16 x 16 x "
+                     "16 x 16 x 16 x 16 x 16 = 1.84e+19 points, more than the 100000",
+                 "16 axes");
+  // just above the limit: refused as fast (nothing expanded)
+  const std::string above = grid_sweep(5, 11, 1);
+  expect_refused(cli("sweep " + above + " --out " + out + " --store " + store),
+                 "= 1.61e+05 points, more than the 100000 a sweep may have", "161051 points");
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_FALSE(std::filesystem::exists(store));
+  expect_refused(cli("export " + huge + " --store " + store + " --out " + out), "1.84e+19 points",
+                 "export");
+}
+
+// F3: more runs than the limit are refused before the store is touched (1e8 runs took 7 GB,
+// aborted and left runs:NAME = 100000001 in the store)
+TEST(CliReliability, CampaignsAboveTheRunLimitAreRefusedLeavingTheStoreAsItWas) {
+  const std::string out = testing::temp_path("out", "");
+  const std::string store = out + ".sqlite";
+  const std::string small = grid_sweep(1, 1, 1);
+  const std::string args =
+      " --out " + out + " --store " + store + " --set supervisor.timeout=1 --quiet";
+  ASSERT_EQ(cli("sweep " + small + args).code, 0);
+  const std::string before = read_file(store);
+
+  const std::string many = grid_sweep(1, 2, 10000000);
+  expect_refused(cli("sweep " + many + args),
+                 many + ": 2 points x 10000000 runs = 20000000 runs, more than the 10000000",
+                 "file");
+  const std::string too_many = grid_sweep(1, 1, 10000001);
+  expect_refused(cli("sweep " + too_many + args),
+                 too_many + ": runs: must be an integer >= 1 and <= 10000000 (got 10000001)",
+                 "runs");
+  EXPECT_EQ(read_file(store), before);
+}
+
 }  // namespace
 }  // namespace plumetrace

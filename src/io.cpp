@@ -216,6 +216,18 @@ class OutputFile {
   bool committed_ = false;
 };
 
+// a text field of a CSV file, quoted as RFC 4180 says where it must be: a field holding a comma,
+// a double quote or a line break is enclosed in double quotes, with each double quote doubled
+std::string csv_text(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string quoted = "\"";
+  for (const char c : text) {
+    quoted += c;
+    if (c == '"') quoted += '"';
+  }
+  return quoted + '"';
+}
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -395,8 +407,8 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
          "wind_y_body,wind_z_body\n";
   for (const auto& s : trace.steps) {
     out << s.time << ',' << s.pose.x << ',' << s.pose.y << ',' << s.pose.heading << ','
-        << s.odometer << ',' << s.state << ',' << (s.odor ? 1 : 0) << ',' << s.concentration << ','
-        << s.wind_samples << ',';
+        << s.odometer << ',' << csv_text(s.state) << ',' << (s.odor ? 1 : 0) << ','
+        << s.concentration << ',' << s.wind_samples << ',';
     if (s.wind_samples > 0) {
       out << s.wind_body.x << ',' << s.wind_body.y << ',' << s.wind_body.z << '\n';
     } else {
@@ -669,7 +681,7 @@ const ExpandedSweep* find_sweep(const std::vector<ExpandedSweep>& sweeps, const 
 // the first columns' names: sweep, point, then one per axis key
 std::string axis_header(const std::vector<std::string>& keys) {
   std::string header = "sweep,point";
-  for (const auto& k : keys) header += ',' + k;
+  for (const auto& k : keys) header += ',' + csv_text(k);
   return header;
 }
 
@@ -682,7 +694,8 @@ std::string axis_cells(const ExpandedSweep& sweep, int point,
     for (std::size_t a = 0; a < sweep.def.axes.size(); ++a) {
       if (sweep.def.axes[a].key != key) continue;
       const ConfigValue& v = sweep.points[static_cast<std::size_t>(point)].values[a];
-      cells += std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v);
+      cells += std::holds_alternative<std::string>(v) ? csv_text(std::get<std::string>(v))
+                                                      : format_value(v);
     }
   }
   return cells;
@@ -709,12 +722,12 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
     if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
     const RunResult& m = r.result;
-    out << r.sweep << ',' << r.point << axis_cells(*sweep, r.point, keys) << ',' << r.trial << ','
-        << m.seed << ',' << r.config_hash << ',' << outcome_name(m.outcome) << ','
-        << (m.outcome == Outcome::kSuccess ? 1 : 0) << ',' << csv_number(m.time) << ','
-        << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ',' << csv_number(m.overhead) << ','
-        << m.losses << ',' << csv_number(m.odor_fraction) << ',' << m.steps << ',' << m.wind_samples
-        << '\n';
+    out << csv_text(r.sweep) << ',' << r.point << axis_cells(*sweep, r.point, keys) << ','
+        << r.trial << ',' << m.seed << ',' << csv_text(r.config_hash) << ','
+        << csv_text(outcome_name(m.outcome)) << ',' << (m.outcome == Outcome::kSuccess ? 1 : 0)
+        << ',' << csv_number(m.time) << ',' << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ','
+        << csv_number(m.overhead) << ',' << m.losses << ',' << csv_number(m.odor_fraction) << ','
+        << m.steps << ',' << m.wind_samples << '\n';
   }
   file.commit();
 }
@@ -733,10 +746,10 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
     for (const auto& p : sweep.points) {
       const auto results = point_runs(rows, sweep.def.name, p.index, runs);
       const PointStats st = summarize(results);
-      out << sweep.def.name << ',' << p.index << axis_cells(sweep, p.index, keys) << ',' << st.runs
-          << ',' << st.successes << ',' << st.walls << ',' << st.timeouts << ',' << st.gave_up
-          << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo) << ','
-          << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
+      out << csv_text(sweep.def.name) << ',' << p.index << axis_cells(sweep, p.index, keys) << ','
+          << st.runs << ',' << st.successes << ',' << st.walls << ',' << st.timeouts << ','
+          << st.gave_up << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo)
+          << ',' << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
           << csv_number(st.overhead.mean) << ',' << csv_number(st.overhead.lo) << ','
           << csv_number(st.overhead.hi) << ',' << csv_number(st.overhead_quartiles.median) << ','
           << csv_number(st.overhead_quartiles.q1) << ',' << csv_number(st.overhead_quartiles.q3)

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
@@ -225,6 +226,59 @@ TEST(CliReliability, CampaignsAboveTheRunLimitAreRefusedLeavingTheStoreAsItWas) 
                  too_many + ": runs: must be an integer >= 1 and <= 10000000 (got 10000001)",
                  "runs");
   EXPECT_EQ(read_file(store), before);
+}
+
+// the rows of a CSV text as RFC 4180 reads them: quoted fields may hold commas, doubled quotes
+// and line breaks
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1, std::vector<std::string>(1));
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    std::string& field = rows.back().back();
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().emplace_back();
+    } else if (c == '\n') {
+      rows.emplace_back(1);
+    } else {
+      field += c;
+    }
+  }
+  if (rows.back().size() == 1 && rows.back().front().empty()) rows.pop_back();
+  return rows;
+}
+
+// F11: text fields are quoted as RFC 4180 says, so a name with commas, quotes and a line break
+// reads back as one field in every CSV export
+TEST(CliReliability, CsvExportsQuoteTextFields) {
+  const std::string name = "a,\"b\"\nc";
+  const std::string sweep = testing::write_temp(
+      "named", ".toml",
+      "name = \"a,\\\"b\\\"\\nc\"\nruns = 2\n[set]\nsupervisor.timeout = 1.0\n"
+      "[[axis]]\nkey = \"controller.algorithm\"\nvalues = [\"casting\", \"surge-cast\"]\n");
+  const std::string out = testing::temp_path("out", "");
+  const Output o = cli("sweep " + sweep + " --out " + out + " --quiet");
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const std::string file : {"runs.csv", "summary.csv"}) {
+    const auto rows = parse_csv(read_file(out + "/" + file));
+    ASSERT_EQ(rows.size(), file == "runs.csv" ? 5u : 3u) << file;
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+      EXPECT_EQ(rows[r].size(), rows[0].size()) << file << " row " << r;
+      EXPECT_EQ(rows[r][0], name) << file << " row " << r;
+    }
+    EXPECT_EQ(rows[1][2], "casting") << file;
+  }
 }
 
 }  // namespace

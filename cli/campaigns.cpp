@@ -1,6 +1,7 @@
 #include "campaigns.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -304,6 +305,19 @@ struct SweepPlan {
   std::string store_path;
 };
 
+// the most characters of a sweep name used as a folder name
+constexpr std::size_t kMaxFolderName = 100;
+
+// whether a sweep name can be the folder of its exports under out/ as it is: letters, digits,
+// '_', '-' and '.', not first
+bool folder_name(const std::string& name) {
+  const auto plain = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  };
+  return !name.empty() && name.size() <= kMaxFolderName && name[0] != '.' && name[0] != '-' &&
+         std::all_of(name.begin(), name.end(), plain);
+}
+
 SweepPlan plan_sweep(const SweepCommand& cmd) {
   SweepPlan plan;
   plan.shard = cmd.shard.empty() ? Shard{} : parse_shard(cmd.shard);
@@ -311,6 +325,14 @@ SweepPlan plan_sweep(const SweepCommand& cmd) {
   plan.name = def.name;
   plan.sweeps = {expand_sweep(def, parse_sets(cmd.sets))};
   check_campaign_size(plan.sweeps, cmd.runs);
+  // why: the name comes from a file; "../../etc/evil" must not lead out of out/ (issue 13, F12)
+  if (cmd.out.empty() && !folder_name(def.name)) {
+    throw ConfigError(cmd.file + ": name: '" + def.name +
+                      "' cannot be the exports' folder under out/ (letters, digits, '_', '-' and "
+                      "'.', not first, at most " +
+                      std::to_string(kMaxFolderName) +
+                      " characters); rename the sweep or give --out");
+  }
   plan.out = cmd.out.empty() ? "out/" + def.name : cmd.out;
   if (!cmd.store.empty()) {
     plan.store_path = cmd.store;

@@ -281,5 +281,30 @@ TEST(CliReliability, CsvExportsQuoteTextFields) {
   }
 }
 
+// F12: a sweep name that is not a plain folder name is refused where it would be a path part
+// (no --out), and nothing is written anywhere
+TEST(CliReliability, SweepNamesThatLeaveOutAreRefusedAsFolderNames) {
+  const std::string dir = testing::temp_path("cwd", "");
+  std::filesystem::create_directories(dir);
+  for (const std::string name : {"../../etc/evil", "..", "/abs", ".hidden", "a\\nb", ""}) {
+    std::string escaped;
+    for (const char c : name) escaped += c == '\\' ? std::string("\\\\") : std::string(1, c);
+    const std::string sweep = testing::write_temp(
+        "evil", ".toml",
+        "name = \"" + escaped + "\"\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
+    const Output o = testing::run_command("cd " + dir + " && timeout 120 " + kCli + " sweep " +
+                                          sweep + " --set supervisor.timeout=1 --quiet");
+    expect_refused(o, name.empty() ? "missing name" : sweep + ": name: '" + name + "'", name);
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  // with --out the name is only a name
+  const std::string sweep = testing::write_temp(
+      "evil", ".toml", "name = \"../../etc/evil\"\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
+  const std::string out = testing::temp_path("out", "");
+  EXPECT_EQ(cli("sweep " + sweep + " --out " + out + " --set supervisor.timeout=1 --quiet").code,
+            0);
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs.csv"));
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -200,13 +200,22 @@ class OutputFile {
     std::remove(part_.c_str());
   }
   std::ofstream& stream() { return out_; }
-  void commit() {
+  // writes out what is buffered and checks that every write went through (a full disk fails
+  // here); the file is not yet in place
+  void finish() {
     out_.close();
-    if (!out_) throw IoError("error while writing '" + path_ + "'");
+    if (!out_) throw IoError("error while writing '" + path_ + "' (is the disk full?)");
+  }
+  // puts the finished file in place
+  void publish() {
     if (std::rename(part_.c_str(), path_.c_str()) != 0) {
       throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
     }
     committed_ = true;
+  }
+  void commit() {
+    finish();
+    publish();
   }
 
  private:
@@ -425,8 +434,17 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
             << snap.w[i] << '\n';
     }
   }
-  file.commit();
-  snap_file.commit();
+  // why: the two files are one trace: both are finished before either is put in place, so a
+  // full disk leaves the previous pair (or none), never a trace without its filaments (F17)
+  file.finish();
+  snap_file.finish();
+  snap_file.publish();
+  try {
+    file.publish();
+  } catch (const IoError&) {
+    std::remove(snap_path.c_str());
+    throw;
+  }
 }
 
 namespace {

@@ -306,5 +306,30 @@ TEST(CliReliability, SweepNamesThatLeaveOutAreRefusedAsFolderNames) {
   EXPECT_TRUE(std::filesystem::exists(out + "/runs.csv"));
 }
 
+// F17: a CSV trace and its filaments are one pair: on a full disk (here a 100 KB file-size
+// limit, with SIGXFSZ ignored so that writes fail as on a full disk) neither is put in place, the
+// previous pair is kept whole, nothing is left behind, and the exit code is 3
+TEST(CliReliability, CsvTraceAndFilamentsAreWrittenAsOnePair) {
+  const std::string dir = testing::temp_path("trace", "");
+  std::filesystem::create_directories(dir);
+  const std::string trace = dir + "/t.csv", filaments = dir + "/t.filaments.csv";
+  std::ofstream(trace) << "old steps\n";
+  std::ofstream(filaments) << "old filaments\n";
+  const std::string args = "run --set supervisor.timeout=5 --snapshot-interval 1 --trace " + trace;
+  const Output o = testing::run_command("bash -c \"trap '' XFSZ && ulimit -f 100 && exec " + kCli +
+                                        " " + args + "\"");
+  EXPECT_EQ(o.code, 3) << o.err;
+  EXPECT_NE(o.err.find(filaments), std::string::npos) << o.err;
+  EXPECT_EQ(read_file(trace), "old steps\n");
+  EXPECT_EQ(read_file(filaments), "old filaments\n");
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 2u) << "a .part file was left behind";
+  // with room, both are written
+  ASSERT_EQ(cli(args).code, 0);
+  EXPECT_EQ(read_file(trace).rfind("time,x,y", 0), 0u);
+  EXPECT_EQ(read_file(filaments).rfind("time,x,y,z,w", 0), 0u);
+}
+
 }  // namespace
 }  // namespace plumetrace

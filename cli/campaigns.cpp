@@ -19,6 +19,7 @@
 #include "plumetrace/stats.hpp"
 #include "plumetrace/store.hpp"
 #include "progress.hpp"
+#include "validators.hpp"
 
 namespace plumetrace::cli {
 
@@ -163,9 +164,11 @@ int draw_report(const std::string& out) {
 void CampaignFlags::add_to(CLI::App& sub) {
   sub.add_option("--threads", threads, "worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
-  sub.add_option("--out", out, "output folder: stores, summary and report (default: out)");
+  sub.add_option("--out", out, "output folder: stores, summary and report (default: out)")
+      ->check(not_empty());
   sub.add_option("--experiments", experiments,
-                 "folder of the sweep files (default: experiments/lochmatter2008)");
+                 "folder of the sweep files (default: experiments/lochmatter2008)")
+      ->check(not_empty());
   sub.add_flag("--quiet", quiet, "no progress bar");
   sub.add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
   sub.add_flag("--no-share-plumes", no_share,
@@ -180,12 +183,14 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
   sub->add_option("--preset", cmd.preset,
                   "the main reading of what the paper leaves unsaid: " + names +
                       " (files experiments/lochmatter2008/presets/NAME.toml; default: default, "
-                      "the built-in defaults)");
+                      "the built-in defaults)")
+      ->check(not_empty());
   sub->add_option("--presets", cmd.presets,
                   "the other readings whose nine sets are run too, for the claims columns, "
-                  "comma-separated, or none (default: every preset file)");
+                  "comma-separated, or none (default: every preset file)")
+      ->check(not_empty());
   sub->add_option("--runs", cmd.runs, "runs per value (default 50, as the paper)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxCampaignRuns));
   cmd.flags.add_to(*sub);
   return sub;
 }
@@ -237,7 +242,8 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityCommand& cmd) {
   auto* sub = app.add_subcommand(
       "sensitivity",
       "rerun the nine sets under every noise mode, kernel and success radius; claims matrix");
-  sub->add_option("--runs", cmd.runs, "runs per value (default 10)")->check(CLI::PositiveNumber);
+  sub->add_option("--runs", cmd.runs, "runs per value (default 10)")
+      ->check(whole_number(1, kMaxCampaignRuns));
   cmd.flags.add_to(*sub);
   return sub;
 }
@@ -271,17 +277,19 @@ CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
   auto* sub = app.add_subcommand(
       "sweep",
       "run a sweep file's grid of runs into a results store (under mpirun: across the ranks)");
-  sub->add_option("sweep", cmd.file, "sweep TOML file")->required();
+  sub->add_option("sweep", cmd.file, "sweep TOML file")->required()->check(not_empty());
   sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep file's)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxCampaignRuns));
   sub->add_option("--threads", cmd.threads,
                   "worker threads (default: all cores; under mpirun, per rank: the cores shared "
                   "among the ranks on each machine)")
       ->check(CLI::PositiveNumber);
   sub->add_option("--store", cmd.store,
                   "results store (default: OUT/results.sqlite; with --shard "
-                  "OUT/part-I-of-N.sqlite)");
-  sub->add_option("--out", cmd.out, "output folder for exports (default: out/NAME)");
+                  "OUT/part-I-of-N.sqlite)")
+      ->check(not_empty());
+  sub->add_option("--out", cmd.out, "output folder for exports (default: out/NAME)")
+      ->check(not_empty());
   sub->add_option("--set", cmd.sets, "override a key of the base scenario (repeatable)")
       ->allow_extra_args(false);
   sub->add_option("--shard", cmd.shard,
@@ -520,8 +528,10 @@ int run_sweep_command(const SweepCommand& cmd, Ranks& ranks) {
 CLI::App* add_merge_command(CLI::App& app, MergeCommand& cmd) {
   auto* sub = app.add_subcommand(
       "merge", "merge the stores of a sweep's shards (plumetrace sweep --shard) into one store");
-  sub->add_option("parts", cmd.parts, "the parts' results stores")->required();
-  sub->add_option("--store", cmd.store, "the merged results store (created if needed)")->required();
+  sub->add_option("parts", cmd.parts, "the parts' results stores")->required()->check(not_empty());
+  sub->add_option("--store", cmd.store, "the merged results store (created if needed)")
+      ->required()
+      ->check(not_empty());
   return sub;
 }
 
@@ -554,11 +564,13 @@ int run_merge_command(const MergeCommand& cmd) {
 CLI::App* add_export_command(CLI::App& app, ExportCommand& cmd) {
   auto* sub = app.add_subcommand(
       "export", "write runs.csv, summary.csv and results.json from a results store");
-  sub->add_option("sweeps", cmd.sweep_files, "the sweep files the store was made from")->required();
-  sub->add_option("--store", cmd.store, "results store")->required();
-  sub->add_option("--out", cmd.out, "output folder")->required();
+  sub->add_option("sweeps", cmd.sweep_files, "the sweep files the store was made from")
+      ->required()
+      ->check(not_empty());
+  sub->add_option("--store", cmd.store, "results store")->required()->check(not_empty());
+  sub->add_option("--out", cmd.out, "output folder")->required()->check(not_empty());
   sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep files')")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxCampaignRuns));
   sub->add_option("--set", cmd.sets, "the --set overrides the sweep ran with (repeatable)")
       ->allow_extra_args(false);
   return sub;

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "json_util.hpp"
 #include "plumetrace/campaign.hpp"
@@ -457,7 +458,10 @@ std::vector<Setting> config_settings(const json& config, const std::string& orig
       const std::string key = table + "." + name;
       if (v.is_boolean()) {
         settings.push_back({key, v.get<bool>(), false, origin, Layer::kFile});
-      } else if (v.is_number_integer()) {
+      } else if (v.is_number_integer() &&
+                 (!v.is_number_unsigned() ||
+                  v.get<std::uint64_t>() <=
+                      static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))) {
         settings.push_back({key, v.get<std::int64_t>(), false, origin, Layer::kFile});
       } else if (v.is_number()) {
         settings.push_back({key, v.get<double>(), false, origin, Layer::kFile});
@@ -476,6 +480,25 @@ Outcome outcome_from_name(const std::string& name) {
     if (outcome_name(o) == name) return o;
   }
   throw ConfigError("unknown outcome '" + name + "'");
+}
+
+// a whole-number field of a trace, checked to lie in [lo, hi]; why: get<int>() wraps a number
+// that does not fit, and truncates 1.5 (issue 13, F18)
+template <class T>
+T trace_integer(const json& v, const std::string& path, const std::string& field, T lo, T hi) {
+  bool ok = false;
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    ok = std::cmp_greater_equal(u, lo) && std::cmp_less_equal(u, hi);
+  } else if (v.is_number_integer()) {
+    const auto i = v.get<std::int64_t>();
+    ok = std::cmp_greater_equal(i, lo) && std::cmp_less_equal(i, hi);
+  }
+  if (!ok) {
+    throw ConfigError("trace '" + path + "': " + field + " must be a whole number from " +
+                      std::to_string(lo) + " to " + std::to_string(hi) + " (got " + v.dump() + ")");
+  }
+  return v.get<T>();
 }
 
 double number_or_nan(const json& v) {
@@ -503,18 +526,23 @@ RecordedRun read_trace(const std::string& path) {
     run.scenario = build_scenario(config_settings(doc.at("config"), path));
 
     const json& r = doc.at("result");
-    run.info = {r.at("algorithm").get<std::string>(), r.at("seed").get<std::uint64_t>(),
-                r.at("trial").get<std::uint64_t>()};
+    constexpr auto kU64 = std::numeric_limits<std::uint64_t>::max();
+    constexpr auto kI64 = std::numeric_limits<std::int64_t>::max();
+    constexpr auto kInt = std::numeric_limits<int>::max();
+    run.info = {r.at("algorithm").get<std::string>(),
+                trace_integer<std::uint64_t>(r.at("seed"), path, "result.seed", 0, kU64),
+                trace_integer<std::uint64_t>(r.at("trial"), path, "result.trial", 0, kU64)};
     run.version = r.at("version").get<std::string>();
     run.result.outcome = outcome_from_name(r.at("outcome").get<std::string>());
     run.result.time = r.at("time_s").get<double>();
     run.result.d_t = r.at("d_t").get<double>();
     run.result.d_u = r.at("d_u").get<double>();
     run.result.overhead = number_or_nan(r.at("overhead"));
-    run.result.losses = r.at("losses").get<int>();
+    run.result.losses = trace_integer<int>(r.at("losses"), path, "result.losses", 0, kInt);
     run.result.odor_fraction = r.at("odor_fraction").get<double>();
-    run.result.steps = r.at("steps").get<std::int64_t>();
-    run.result.wind_samples = r.at("wind_samples").get<std::int64_t>();
+    run.result.steps = trace_integer<std::int64_t>(r.at("steps"), path, "result.steps", 0, kI64);
+    run.result.wind_samples =
+        trace_integer<std::int64_t>(r.at("wind_samples"), path, "result.wind_samples", 0, kI64);
     run.result.seed = run.info.seed;
     run.result.trial = run.info.trial;
 
@@ -538,7 +566,8 @@ RecordedRun read_trace(const std::string& path) {
       s.state = st["state"][i].get<std::string>();
       s.odor = st["odor"][i].get<bool>();
       s.concentration = st["concentration"][i].get<double>();
-      s.wind_samples = st["wind_samples"][i].get<int>();
+      s.wind_samples = trace_integer<int>(st["wind_samples"][i], path,
+                                          "steps.wind_samples[" + std::to_string(i) + "]", 0, kInt);
       if (s.wind_samples > 0) {
         s.wind_body = {st["wind_x_body"][i].get<double>(), st["wind_y_body"][i].get<double>(),
                        st["wind_z_body"][i].get<double>()};

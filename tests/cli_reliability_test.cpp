@@ -331,5 +331,78 @@ TEST(CliReliability, CsvTraceAndFilamentsAreWrittenAsOnePair) {
   EXPECT_EQ(read_file(filaments).rfind("time,x,y,z,w", 0), 0u);
 }
 
+// F18, F22: nan, inf, empty texts and out-of-range counts are refused naming the option, with a
+// message that states the range readably (CLI11's printed DBL_MAX with 300 digits)
+TEST(CliReliability, BadOptionValuesAreRefusedNamingTheOptionReadably) {
+  const std::string sweep = grid_sweep(1, 1, 1);
+  struct Case {
+    std::string args, names;
+  };
+  const Case cases[] = {
+      {"run --snapshot-interval nan",
+       "--snapshot-interval: must be a finite number >= 0 (got 'nan')"},
+      {"run --snapshot-interval -1",
+       "--snapshot-interval: must be a finite number >= 0 (got '-1')"},
+      {"probe --points 8,0,0 --warmup nan", "--warmup: must be a finite number >= 0 (got 'nan')"},
+      {"probe --points 8,0,0 --duration inf", "--duration: must be a finite number > 0"},
+      {"probe --points 8,0,0 --interval 0", "--interval: must be a finite number > 0 (got '0')"},
+      {"run --algorithm ''", "--algorithm: must not be empty"},
+      {"config --algorithm ''", "--algorithm: must not be empty"},
+      {"run --trace ''", "--trace: must not be empty"},
+      {"run --view ''", "--view: must not be empty"},
+      {"run ''", "scenario: must not be empty"},
+      {"view run.json --at nan", "--at: must be a finite number >= 0 (got 'nan')"},
+      {"view run.json -o ''", "--output: must not be empty"},
+      {"view run.json --max-frames 0", "--max-frames: must be a whole number from 1 to 2147483647"},
+      {"sweep " + sweep + " --runs 100000001",
+       "--runs: must be a whole number from 1 to 10000000 (got '100000001')"},
+      {"sweep " + sweep + " --runs 0", "--runs: must be a whole number from 1 to 10000000"},
+      {"sweep " + sweep + " --out ''", "--out: must not be empty"},
+      {"sweep " + sweep + " --store ''", "--store: must not be empty"},
+      {"export " + sweep + " --store x.sqlite --out ''", "--out: must not be empty"},
+      {"merge '' --store x.sqlite", "parts: must not be empty"},
+      {"reproduce --runs 0", "--runs: must be a whole number from 1 to 10000000"},
+      {"reproduce --presets ''", "--presets: must not be empty"},
+      {"sensitivity --out ''", "--out: must not be empty"},
+  };
+  for (const auto& c : cases) {
+    const Output o = cli(c.args);
+    expect_refused(o, c.names, c.args);
+    EXPECT_EQ(o.err.find("1797693134862315"), std::string::npos) << c.args << ": " << o.err;
+  }
+}
+
+// F18: whole numbers in a trace that do not fit their field are refused naming the file and the
+// field, instead of wrapping (get<int>) or truncating
+TEST(CliReliability, TraceIntegersOutOfRangeAreRefusedNamingTheField) {
+  const std::string trace = testing::temp_path("run", ".json");
+  ASSERT_EQ(cli("run --set supervisor.timeout=1 --trace " + trace).code, 0);
+  const json good = json::parse(read_file(trace));
+  struct Case {
+    std::string pointer;
+    json value;
+    std::string names;
+  };
+  const Case cases[] = {
+      {"/result/losses", 1LL << 40, "result.losses must be a whole number from 0 to 2147483647"},
+      {"/result/losses", -1, "result.losses"},
+      {"/result/losses", 1.5, "result.losses"},
+      {"/result/seed", -1, "result.seed must be a whole number from 0 to 18446744073709551615"},
+      {"/result/trial", 0.5, "result.trial"},
+      {"/result/steps", -3, "result.steps"},
+      {"/result/wind_samples", "12", "result.wind_samples"},
+      {"/steps/wind_samples/1", 10000000000LL, "steps.wind_samples[1]"},
+  };
+  for (const auto& c : cases) {
+    json bad = good;
+    bad[json::json_pointer(c.pointer)] = c.value;
+    const std::string path = testing::write_temp("bad", ".json", bad.dump());
+    const Output o = cli("view " + path + " -o " + testing::temp_path("bad", ".html"));
+    expect_refused(o, "trace '" + path + "': " + c.names, c.pointer + " = " + c.value.dump());
+  }
+  // the file as written reads back
+  EXPECT_EQ(cli("view " + trace + " -o " + testing::temp_path("good", ".html")).code, 0);
+}
+
 }  // namespace
 }  // namespace plumetrace

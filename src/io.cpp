@@ -806,6 +806,17 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
   file.commit();
 }
 
+std::string recorded_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path normal = fs::path(path).lexically_normal();
+  std::error_code ec;
+  const fs::path here = fs::current_path(ec);
+  if (!normal.is_absolute() || ec) return normal.string();
+  const fs::path inside = normal.lexically_relative(here.lexically_normal());
+  if (inside.empty() || *inside.begin() == "..") return normal.string();
+  return inside.string();
+}
+
 void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                         const std::vector<RunRow>& rows, int runs_override) {
   json doc_sweeps = json::array();
@@ -838,7 +849,7 @@ void write_results_json(const std::string& path, const std::vector<ExpandedSweep
     }
     doc_sweeps.push_back({{"name", sweep.def.name},
                           {"title", sweep.def.title},
-                          {"file", sweep.def.file},
+                          {"file", recorded_path(sweep.def.file)},
                           {"seed", sweep.def.seed},
                           {"runs_per_point", runs},
                           {"axes", axes},

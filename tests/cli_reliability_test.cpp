@@ -404,5 +404,23 @@ TEST(CliReliability, TraceIntegersOutOfRangeAreRefusedNamingTheField) {
   EXPECT_EQ(cli("view " + trace + " -o " + testing::temp_path("good", ".html")).code, 0);
 }
 
+// F22: results.json records a sweep file's path normalised and relative to the folder the
+// command ran in when it lies inside it, however it was typed: never an absolute path of this
+// machine for a file typed relative
+TEST(CliReliability, ResultsRecordTheSweepPathNormalisedAndRelative) {
+  const std::string dir = testing::temp_path("cwd", "");
+  std::filesystem::create_directories(dir + "/sub");
+  std::ofstream(dir + "/sub/s.toml") << "name = \"s\"\nruns = 1\n[set]\nsupervisor.timeout = 1.0\n"
+                                        "[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n";
+  for (const std::string& typed :
+       std::vector<std::string>{"sub/s.toml", "./sub/../sub/s.toml", dir + "/sub/s.toml"}) {
+    const Output o =
+        testing::run_command("cd " + dir + " && " + kCli + " sweep " + typed + " --out o --quiet");
+    ASSERT_EQ(o.code, 0) << typed << ": " << o.err;
+    const json results = json::parse(read_file(dir + "/o/results.json"));
+    EXPECT_EQ(results["sweeps"][0]["file"], "sub/s.toml") << typed;
+  }
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -205,6 +205,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kBadInput;
+  } catch (...) {
+    return pt::cli::report_error(std::current_exception());
   }
 
   // the MPI job this process belongs to, if any: left (MPI_Finalize) when main returns, after any

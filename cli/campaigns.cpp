@@ -1,11 +1,13 @@
 #include "campaigns.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -17,6 +19,7 @@
 #include "plumetrace/stats.hpp"
 #include "plumetrace/store.hpp"
 #include "progress.hpp"
+#include "validators.hpp"
 
 namespace plumetrace::cli {
 
@@ -160,10 +163,12 @@ int draw_report(const std::string& out) {
 
 void CampaignFlags::add_to(CLI::App& sub) {
   sub.add_option("--threads", threads, "worker threads (default: all cores)")
-      ->check(CLI::Range(1, kMaxThreads));
-  sub.add_option("--out", out, "output folder: stores, summary and report (default: out)");
+      ->check(whole_number(1, kMaxThreads));
+  sub.add_option("--out", out, "output folder: stores, summary and report (default: out)")
+      ->check(not_empty());
   sub.add_option("--experiments", experiments,
-                 "folder of the sweep files (default: experiments/lochmatter2008)");
+                 "folder of the sweep files (default: experiments/lochmatter2008)")
+      ->check(not_empty());
   sub.add_flag("--quiet", quiet, "no progress bar");
   sub.add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
   sub.add_flag("--no-share-plumes", no_share,
@@ -178,12 +183,14 @@ CLI::App* add_reproduce_command(CLI::App& app, ReproduceCommand& cmd) {
   sub->add_option("--preset", cmd.preset,
                   "the main reading of what the paper leaves unsaid: " + names +
                       " (files experiments/lochmatter2008/presets/NAME.toml; default: default, "
-                      "the built-in defaults)");
+                      "the built-in defaults)")
+      ->check(not_empty());
   sub->add_option("--presets", cmd.presets,
                   "the other readings whose nine sets are run too, for the claims columns, "
-                  "comma-separated, or none (default: every preset file)");
+                  "comma-separated, or none (default: every preset file)")
+      ->check(not_empty());
   sub->add_option("--runs", cmd.runs, "runs per value (default 50, as the paper)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxCampaignRuns));
   cmd.flags.add_to(*sub);
   return sub;
 }
@@ -199,6 +206,7 @@ int run_reproduce_command(const ReproduceCommand& cmd) {
   for (std::size_t i = 1; i < readings.size(); ++i) {
     for (auto& s : reading_sets(sets, readings[i], false)) sweeps.push_back(std::move(s));
   }
+  check_campaign_size(sweeps, cmd.runs);
   std::filesystem::create_directories(cmd.flags.out);
   Store store(cmd.flags.out + "/results.sqlite", campaign_definition(sweeps), version(),
               cmd.flags.fresh);
@@ -234,7 +242,8 @@ CLI::App* add_sensitivity_command(CLI::App& app, SensitivityCommand& cmd) {
   auto* sub = app.add_subcommand(
       "sensitivity",
       "rerun the nine sets under every noise mode, kernel and success radius; claims matrix");
-  sub->add_option("--runs", cmd.runs, "runs per value (default 10)")->check(CLI::PositiveNumber);
+  sub->add_option("--runs", cmd.runs, "runs per value (default 10)")
+      ->check(whole_number(1, kMaxCampaignRuns));
   cmd.flags.add_to(*sub);
   return sub;
 }
@@ -245,6 +254,7 @@ int run_sensitivity_command(const SensitivityCommand& cmd) {
        sensitivity_sweeps(read_sets(experiments_dir(cmd.flags.experiments)), cmd.runs)) {
     sweeps.push_back(expand_sweep(def, {}));
   }
+  check_campaign_size(sweeps, cmd.runs);
   std::filesystem::create_directories(cmd.flags.out);
   Store store(cmd.flags.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(),
               cmd.flags.fresh);
@@ -267,17 +277,19 @@ CLI::App* add_sweep_command(CLI::App& app, SweepCommand& cmd) {
   auto* sub = app.add_subcommand(
       "sweep",
       "run a sweep file's grid of runs into a results store (under mpirun: across the ranks)");
-  sub->add_option("sweep", cmd.file, "sweep TOML file")->required();
+  sub->add_option("sweep", cmd.file, "sweep TOML file")->required()->check(not_empty());
   sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep file's)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxCampaignRuns));
   sub->add_option("--threads", cmd.threads,
                   "worker threads (default: all cores; under mpirun, per rank: the cores shared "
                   "among the ranks on each machine)")
-      ->check(CLI::Range(1, kMaxThreads));
+      ->check(whole_number(1, kMaxThreads));
   sub->add_option("--store", cmd.store,
                   "results store (default: OUT/results.sqlite; with --shard "
-                  "OUT/part-I-of-N.sqlite)");
-  sub->add_option("--out", cmd.out, "output folder for exports (default: out/NAME)");
+                  "OUT/part-I-of-N.sqlite)")
+      ->check(not_empty());
+  sub->add_option("--out", cmd.out, "output folder for exports (default: out/NAME)")
+      ->check(not_empty());
   sub->add_option("--set", cmd.sets, "override a key of the base scenario (repeatable)")
       ->allow_extra_args(false);
   sub->add_option("--shard", cmd.shard,
@@ -301,12 +313,34 @@ struct SweepPlan {
   std::string store_path;
 };
 
+// the most characters of a sweep name used as a folder name
+constexpr std::size_t kMaxFolderName = 100;
+
+// whether a sweep name can be the folder of its exports under out/ as it is: letters, digits,
+// '_', '-' and '.', not first
+bool folder_name(const std::string& name) {
+  const auto plain = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  };
+  return !name.empty() && name.size() <= kMaxFolderName && name[0] != '.' && name[0] != '-' &&
+         std::all_of(name.begin(), name.end(), plain);
+}
+
 SweepPlan plan_sweep(const SweepCommand& cmd) {
   SweepPlan plan;
   plan.shard = cmd.shard.empty() ? Shard{} : parse_shard(cmd.shard);
   const SweepDef def = read_sweep_file(cmd.file);
   plan.name = def.name;
   plan.sweeps = {expand_sweep(def, parse_sets(cmd.sets))};
+  check_campaign_size(plan.sweeps, cmd.runs);
+  // why: the name comes from a file; "../../etc/evil" must not lead out of out/ (issue 13, F12)
+  if (cmd.out.empty() && !folder_name(def.name)) {
+    throw ConfigError(cmd.file + ": name: '" + def.name +
+                      "' cannot be the exports' folder under out/ (letters, digits, '_', '-' and "
+                      "'.', not first, at most " +
+                      std::to_string(kMaxFolderName) +
+                      " characters); rename the sweep or give --out");
+  }
   plan.out = cmd.out.empty() ? "out/" + def.name : cmd.out;
   if (!cmd.store.empty()) {
     plan.store_path = cmd.store;
@@ -494,8 +528,10 @@ int run_sweep_command(const SweepCommand& cmd, Ranks& ranks) {
 CLI::App* add_merge_command(CLI::App& app, MergeCommand& cmd) {
   auto* sub = app.add_subcommand(
       "merge", "merge the stores of a sweep's shards (plumetrace sweep --shard) into one store");
-  sub->add_option("parts", cmd.parts, "the parts' results stores")->required();
-  sub->add_option("--store", cmd.store, "the merged results store (created if needed)")->required();
+  sub->add_option("parts", cmd.parts, "the parts' results stores")->required()->check(not_empty());
+  sub->add_option("--store", cmd.store, "the merged results store (created if needed)")
+      ->required()
+      ->check(not_empty());
   return sub;
 }
 
@@ -528,11 +564,13 @@ int run_merge_command(const MergeCommand& cmd) {
 CLI::App* add_export_command(CLI::App& app, ExportCommand& cmd) {
   auto* sub = app.add_subcommand(
       "export", "write runs.csv, summary.csv and results.json from a results store");
-  sub->add_option("sweeps", cmd.sweep_files, "the sweep files the store was made from")->required();
-  sub->add_option("--store", cmd.store, "results store")->required();
-  sub->add_option("--out", cmd.out, "output folder")->required();
+  sub->add_option("sweeps", cmd.sweep_files, "the sweep files the store was made from")
+      ->required()
+      ->check(not_empty());
+  sub->add_option("--store", cmd.store, "results store")->required()->check(not_empty());
+  sub->add_option("--out", cmd.out, "output folder")->required()->check(not_empty());
   sub->add_option("--runs", cmd.runs, "runs per point (default: the sweep files')")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1, kMaxCampaignRuns));
   sub->add_option("--set", cmd.sets, "the --set overrides the sweep ran with (repeatable)")
       ->allow_extra_args(false);
   return sub;
@@ -565,6 +603,10 @@ int exit_code(const std::exception_ptr& error) {
     return kIoFailure;
   } catch (const IoError&) {
     return kIoFailure;
+  } catch (const std::bad_alloc&) {
+    return kOutOfMemory;
+  } catch (...) {
+    return kInternalError;
   }
 }
 
@@ -572,8 +614,21 @@ int report_error(const std::exception_ptr& error, const std::string& prefix) {
   const int code = exit_code(error);
   try {
     std::rethrow_exception(error);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "plumetrace: error: %sout of memory; results already stored are kept (lower "
+                 "--threads, plume.capacity or the grid, or raise the memory limit)\n",
+                 prefix.c_str());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "plumetrace: error: %s%s\n", prefix.c_str(), e.what());
+    if (code == kInternalError) {
+      std::fprintf(stderr, "plumetrace: internal error: %s%s (please report it)\n", prefix.c_str(),
+                   e.what());
+    } else {
+      std::fprintf(stderr, "plumetrace: error: %s%s\n", prefix.c_str(), e.what());
+    }
+  } catch (...) {
+    std::fprintf(stderr, "plumetrace: internal error: %san unknown exception (please report it)\n",
+                 prefix.c_str());
   }
   return code;
 }

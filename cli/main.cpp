@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -19,8 +20,10 @@
 #include "plumetrace/trace.hpp"
 #include "plumetrace/viewer.hpp"
 #include "plumetrace/world.hpp"
+#include "validators.hpp"
 
 namespace pt = plumetrace;
+namespace cli = plumetrace::cli;
 
 namespace {
 
@@ -33,11 +36,13 @@ struct ScenarioOptions {
   std::string algorithm;
 
   void add_to(CLI::App& cmd, bool with_algorithm) {
-    cmd.add_option("scenario", path, "scenario TOML file (default: the paper's setup)");
+    cmd.add_option("scenario", path, "scenario TOML file (default: the paper's setup)")
+        ->check(cli::not_empty());
     cmd.add_option("--set", sets, "override a config key: key.path=value (repeatable)")
         ->allow_extra_args(false);
     if (with_algorithm) {
-      cmd.add_option("--algorithm", algorithm, "casting, surge-spiral or surge-cast");
+      cmd.add_option("--algorithm", algorithm, "casting, surge-spiral or surge-cast")
+          ->check(cli::not_empty());
     }
   }
 
@@ -117,34 +122,38 @@ int main(int argc, char** argv) {
   bool json_out = false;
   run->add_option("--seed", seed_text, "master seed (default 1)");
   run->add_option("--trial", trial_text, "trial index (default 0)");
-  run->add_option("--trace", trace_path, "write the run's trace (.csv or .json)");
+  run->add_option("--trace", trace_path, "write the run's trace (.csv or .json)")
+      ->check(cli::not_empty());
   run->add_option("--snapshot-interval", snapshot_interval,
                   "seconds between filament snapshots in the trace (0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::finite_number(0.0));
   run->add_flag("--json", json_out, "print one JSON object");
   std::string run_view_path;
   run->add_option("--view", run_view_path,
                   "write the run's viewer (.html, animated) or figure (.svg); filaments every "
-                  "0.25 s unless --snapshot-interval says otherwise");
+                  "0.25 s unless --snapshot-interval says otherwise")
+      ->check(cli::not_empty());
 
   // view
   auto* view = app.add_subcommand("view", "draw a run from its .json trace: viewer or figure");
   std::string view_trace, view_out;
   pt::ViewerOptions view_opts;
   view->add_option("trace", view_trace, "trace written by: plumetrace run --trace FILE.json")
-      ->required();
+      ->required()
+      ->check(cli::not_empty());
   view->add_option("-o,--output", view_out,
                    "FILE.html (animated viewer) or FILE.svg (static figure); default: the "
-                   "trace's name with .html");
+                   "trace's name with .html")
+      ->check(cli::not_empty());
   view->add_option("--max-frames", view_opts.max_frames,
                    "most robot frames kept for the animation (default 12000)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole_number(1, std::numeric_limits<int>::max()));
   view->add_option("--max-snapshots", view_opts.max_snapshots,
                    "most filament snapshots kept (default 600)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::whole_number(1, std::numeric_limits<int>::max()));
   view->add_option("--at", view_opts.figure_time,
                    "time of the filaments drawn in an .svg figure (s; default: the end)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::finite_number(0.0));
 
   // probe
   auto* probe = app.add_subcommand("probe", "run the plume alone and sample it at points");
@@ -157,11 +166,11 @@ int main(int argc, char** argv) {
   probe
       ->add_option("--warmup", probe_opts.warmup,
                    "plume-only time before sampling (s; default sim.warmup)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::finite_number(0.0));
   probe->add_option("--duration", probe_opts.duration, "sampling time (s)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_number(0.0, true));
   probe->add_option("--interval", probe_opts.interval, "time between samples (s)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::finite_number(0.0, true));
   std::string probe_seed_text = "1";
   probe->add_option("--seed", probe_seed_text, "master seed (default 1)");
   probe->add_flag("--json", probe_json, "print JSON");
@@ -196,6 +205,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return kBadInput;
+  } catch (...) {
+    return pt::cli::report_error(std::current_exception());
   }
 
   // the MPI job this process belongs to, if any: left (MPI_Finalize) when main returns, after any

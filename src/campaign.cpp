@@ -45,9 +45,30 @@ std::vector<std::vector<int>> plume_indices(const std::vector<ExpandedSweep>& sw
   return out;
 }
 
+std::int64_t check_campaign_size(const std::vector<ExpandedSweep>& sweeps, int runs_override) {
+  std::int64_t total = 0;
+  for (const auto& s : sweeps) {
+    // why: at most kMaxGridPoints points times at most 2^31 runs: no overflow
+    total += static_cast<std::int64_t>(s.points.size()) * runs_per_point(s, runs_override);
+  }
+  if (total <= kMaxCampaignRuns) return total;
+  std::string what = std::to_string(total) + " runs";
+  if (sweeps.size() == 1) {
+    const SweepDef& def = sweeps.front().def;
+    what = (def.file.empty() ? "sweep " + def.name : def.file) + ": " +
+           std::to_string(sweeps.front().points.size()) + " points x " +
+           std::to_string(runs_per_point(sweeps.front(), runs_override)) + " runs = " + what;
+  } else {
+    what = "the " + std::to_string(sweeps.size()) + " sweeps define " + what;
+  }
+  throw ConfigError(what + ", more than the " + std::to_string(kMaxCampaignRuns) +
+                    " one command may run (split the sweep, or use fewer runs per point)");
+}
+
 std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
                                   const std::set<RunKey>& done, int runs_override,
                                   const Shard& shard) {
+  check_campaign_size(sweeps, runs_override);
   const auto plumes = shard.count > 1 ? plume_indices(sweeps) : std::vector<std::vector<int>>{};
   std::vector<RunTask> tasks;
   for (std::size_t s = 0; s < sweeps.size(); ++s) {

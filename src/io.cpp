@@ -1,8 +1,12 @@
 #include "plumetrace/io.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "json_util.hpp"
 #include "plumetrace/campaign.hpp"
@@ -30,11 +35,18 @@ using detail::value_to_json;
 using nlohmann::json;
 
 void flatten(const toml::table& table, const std::string& prefix, const std::string& path,
-             Layer layer, std::vector<Setting>& out) {
+             Layer layer, std::vector<Setting>& out, int depth = 1) {
   for (const auto& [k, node] : table) {
     const std::string key = prefix + std::string(k.str());
     if (const auto* sub = node.as_table()) {
-      flatten(*sub, key + ".", path, layer, out);
+      // why: each level is a stack frame holding the key so far; a key of 30000 segments would
+      // overflow the stack (issue 13, F5)
+      if (depth >= kMaxKeyDepth) {
+        throw ConfigError(path + ": key '" + key + ".' is nested more than " +
+                          std::to_string(kMaxKeyDepth) +
+                          " levels deep (config keys are table.key)");
+      }
+      flatten(*sub, key + ".", path, layer, out, depth + 1);
     } else if (const auto* i = node.as_integer()) {
       out.push_back({key, static_cast<std::int64_t>(i->get()), false, path, layer});
     } else if (const auto* d = node.as_floating_point()) {
@@ -52,16 +64,117 @@ void flatten(const toml::table& table, const std::string& prefix, const std::str
   }
 }
 
-toml::table parse_toml_file(const std::string& path, const std::string& what) {
-  std::error_code ec;
-  std::ifstream in(path);
-  if (!std::filesystem::is_regular_file(path, ec) || !in) {
-    throw ConfigError("cannot read " + what + " '" + path + "'");
+// reads the whole of a regular file into `text`; false with the reason in `why` otherwise
+// why: the type is checked on the open descriptor, opened without blocking, so that a FIFO or a
+// device named as an input neither blocks open() or read() for ever nor is swapped in between
+// a check and the open (issue 13, F8)
+bool read_regular_file(const std::string& path, std::string& text, std::string& why) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    why = std::strerror(errno);
+    return false;
   }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    why = std::strerror(errno);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    why = S_ISDIR(st.st_mode) ? "a folder, not a file" : "not a regular file";
+    return false;
+  }
+  text.clear();
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n == 0) return true;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      why = std::strerror(errno);
+      return false;
+    }
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+}
+
+// the end of the quoted string that starts at `at` (one of " ' """ '''), or npos when unclosed
+std::size_t string_end(std::string_view text, std::size_t at) {
+  const char quote = text[at];
+  const bool multi = text.substr(at, 3) == std::string(3, quote);
+  const bool escapes = quote == '"';
+  for (std::size_t i = at + (multi ? 3 : 1); i < text.size(); ++i) {
+    if (escapes && text[i] == '\\') {
+      ++i;
+    } else if (!multi && text[i] == '\n') {
+      return std::string_view::npos;
+    } else if (text[i] == quote && (!multi || text.substr(i, 3) == std::string(3, quote))) {
+      // why: a multi-line string may end in up to two more quotes ("a""" + "" is a"")
+      std::size_t end = i + (multi ? 3 : 1);
+      while (multi && end < text.size() && text[end] == quote && end < i + 5) ++end;
+      return end;
+    }
+  }
+  return std::string_view::npos;
+}
+
+// refuses a TOML text with a dotted chain (a.b."c".d, a table header [a.b.c]) of more than
+// kMaxKeyDepth parts, naming the line
+// why: toml++ nests a table per part and walks the nesting recursively; a key of 60000 parts
+// overflows the stack inside toml::parse (issue 13, F5). Counted without parsing: bare words and
+// quoted strings joined by dots, outside comments; values form chains of at most two (1.5)
+void check_key_depth(std::string_view text, const std::string& path) {
+  const auto bare = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '+';
+  };
+  int parts = 0;           // parts of the chain being read
+  bool after_dot = false;  // the chain ends in a dot: the next word or string joins it
+  int line = 1;
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    std::size_t next = i + 1;
+    if (c == '\n') ++line;
+    if (c == '#') {
+      next = text.find('\n', i);
+      if (next == std::string_view::npos) next = text.size();
+      parts = 0;
+    } else if (c == '"' || c == '\'') {
+      const std::size_t end = string_end(text, i);
+      if (end == std::string_view::npos) return;  // toml::parse says where
+      line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                          text.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+      parts = after_dot ? parts + 1 : 1;
+      after_dot = false;
+      next = end;
+    } else if (bare(c)) {
+      while (next < text.size() && bare(text[next])) ++next;
+      parts = after_dot ? parts + 1 : 1;
+      after_dot = false;
+    } else if (c == '.' && parts > 0) {
+      after_dot = true;
+    } else if (c != ' ' && c != '\t') {
+      parts = 0;
+      after_dot = false;
+    }
+    if (parts > kMaxKeyDepth) {
+      throw ConfigError(path + ":" + std::to_string(line) + ": a key has more than " +
+                        std::to_string(kMaxKeyDepth) + " dotted parts (config keys are table.key)");
+    }
+    i = next;
+  }
+}
+
+toml::table parse_toml_file(const std::string& path, const std::string& what) {
+  std::string text, why;
+  if (!read_regular_file(path, text, why)) {
+    throw ConfigError("cannot read " + what + " '" + path + "': " + why);
+  }
+  check_key_depth(text, path);
   try {
-    return toml::parse(buffer.str(), path);
+    return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column
@@ -88,13 +201,22 @@ class OutputFile {
     std::remove(part_.c_str());
   }
   std::ofstream& stream() { return out_; }
-  void commit() {
+  // writes out what is buffered and checks that every write went through (a full disk fails
+  // here); the file is not yet in place
+  void finish() {
     out_.close();
-    if (!out_) throw IoError("error while writing '" + path_ + "'");
+    if (!out_) throw IoError("error while writing '" + path_ + "' (is the disk full?)");
+  }
+  // puts the finished file in place
+  void publish() {
     if (std::rename(part_.c_str(), path_.c_str()) != 0) {
       throw IoError("cannot write '" + path_ + "': " + std::strerror(errno));
     }
     committed_ = true;
+  }
+  void commit() {
+    finish();
+    publish();
   }
 
  private:
@@ -103,6 +225,18 @@ class OutputFile {
   std::ofstream out_;
   bool committed_ = false;
 };
+
+// a text field of a CSV file, quoted as RFC 4180 says where it must be: a field holding a comma,
+// a double quote or a line break is enclosed in double quotes, with each double quote doubled
+std::string csv_text(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string quoted = "\"";
+  for (const char c : text) {
+    quoted += c;
+    if (c == '"') quoted += '"';
+  }
+  return quoted + '"';
+}
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
@@ -283,8 +417,8 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
          "wind_y_body,wind_z_body\n";
   for (const auto& s : trace.steps) {
     out << s.time << ',' << s.pose.x << ',' << s.pose.y << ',' << s.pose.heading << ','
-        << s.odometer << ',' << s.state << ',' << (s.odor ? 1 : 0) << ',' << s.concentration << ','
-        << s.wind_samples << ',';
+        << s.odometer << ',' << csv_text(s.state) << ',' << (s.odor ? 1 : 0) << ','
+        << s.concentration << ',' << s.wind_samples << ',';
     if (s.wind_samples > 0) {
       out << s.wind_body.x << ',' << s.wind_body.y << ',' << s.wind_body.z << '\n';
     } else {
@@ -301,8 +435,17 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
             << snap.w[i] << '\n';
     }
   }
-  file.commit();
-  snap_file.commit();
+  // why: the two files are one trace: both are finished before either is put in place, so a
+  // full disk leaves the previous pair (or none), never a trace without its filaments (F17)
+  file.finish();
+  snap_file.finish();
+  snap_file.publish();
+  try {
+    file.publish();
+  } catch (const IoError&) {
+    std::remove(snap_path.c_str());
+    throw;
+  }
 }
 
 namespace {
@@ -315,7 +458,10 @@ std::vector<Setting> config_settings(const json& config, const std::string& orig
       const std::string key = table + "." + name;
       if (v.is_boolean()) {
         settings.push_back({key, v.get<bool>(), false, origin, Layer::kFile});
-      } else if (v.is_number_integer()) {
+      } else if (v.is_number_integer() &&
+                 (!v.is_number_unsigned() ||
+                  v.get<std::uint64_t>() <=
+                      static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))) {
         settings.push_back({key, v.get<std::int64_t>(), false, origin, Layer::kFile});
       } else if (v.is_number()) {
         settings.push_back({key, v.get<double>(), false, origin, Layer::kFile});
@@ -336,6 +482,25 @@ Outcome outcome_from_name(const std::string& name) {
   throw ConfigError("unknown outcome '" + name + "'");
 }
 
+// a whole-number field of a trace, checked to lie in [lo, hi]; why: get<int>() wraps a number
+// that does not fit, and truncates 1.5 (issue 13, F18)
+template <class T>
+T trace_integer(const json& v, const std::string& path, const std::string& field, T lo, T hi) {
+  bool ok = false;
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    ok = std::cmp_greater_equal(u, lo) && std::cmp_less_equal(u, hi);
+  } else if (v.is_number_integer()) {
+    const auto i = v.get<std::int64_t>();
+    ok = std::cmp_greater_equal(i, lo) && std::cmp_less_equal(i, hi);
+  }
+  if (!ok) {
+    throw ConfigError("trace '" + path + "': " + field + " must be a whole number from " +
+                      std::to_string(lo) + " to " + std::to_string(hi) + " (got " + v.dump() + ")");
+  }
+  return v.get<T>();
+}
+
 double number_or_nan(const json& v) {
   return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
 }
@@ -348,32 +513,36 @@ RecordedRun read_trace(const std::string& path) {
                       "': a CSV trace carries no configuration; write the trace as .json "
                       "(plumetrace run --trace run.json)");
   }
-  std::ifstream in(path);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || !in) {
-    throw IoError("cannot read trace '" + path + "'");
+  std::string text, why;
+  if (!read_regular_file(path, text, why)) {
+    throw IoError("cannot read trace '" + path + "': " + why);
   }
   RecordedRun run;
   try {
-    const json doc = json::parse(in);
+    const json doc = json::parse(text);
     if (!doc.is_object() || !doc.contains("plumetrace_trace")) {
       throw ConfigError("trace '" + path + "': not a plumetrace trace (no 'plumetrace_trace' key)");
     }
     run.scenario = build_scenario(config_settings(doc.at("config"), path));
 
     const json& r = doc.at("result");
-    run.info = {r.at("algorithm").get<std::string>(), r.at("seed").get<std::uint64_t>(),
-                r.at("trial").get<std::uint64_t>()};
+    constexpr auto kU64 = std::numeric_limits<std::uint64_t>::max();
+    constexpr auto kI64 = std::numeric_limits<std::int64_t>::max();
+    constexpr auto kInt = std::numeric_limits<int>::max();
+    run.info = {r.at("algorithm").get<std::string>(),
+                trace_integer<std::uint64_t>(r.at("seed"), path, "result.seed", 0, kU64),
+                trace_integer<std::uint64_t>(r.at("trial"), path, "result.trial", 0, kU64)};
     run.version = r.at("version").get<std::string>();
     run.result.outcome = outcome_from_name(r.at("outcome").get<std::string>());
     run.result.time = r.at("time_s").get<double>();
     run.result.d_t = r.at("d_t").get<double>();
     run.result.d_u = r.at("d_u").get<double>();
     run.result.overhead = number_or_nan(r.at("overhead"));
-    run.result.losses = r.at("losses").get<int>();
+    run.result.losses = trace_integer<int>(r.at("losses"), path, "result.losses", 0, kInt);
     run.result.odor_fraction = r.at("odor_fraction").get<double>();
-    run.result.steps = r.at("steps").get<std::int64_t>();
-    run.result.wind_samples = r.at("wind_samples").get<std::int64_t>();
+    run.result.steps = trace_integer<std::int64_t>(r.at("steps"), path, "result.steps", 0, kI64);
+    run.result.wind_samples =
+        trace_integer<std::int64_t>(r.at("wind_samples"), path, "result.wind_samples", 0, kI64);
     run.result.seed = run.info.seed;
     run.result.trial = run.info.trial;
 
@@ -397,7 +566,8 @@ RecordedRun read_trace(const std::string& path) {
       s.state = st["state"][i].get<std::string>();
       s.odor = st["odor"][i].get<bool>();
       s.concentration = st["concentration"][i].get<double>();
-      s.wind_samples = st["wind_samples"][i].get<int>();
+      s.wind_samples = trace_integer<int>(st["wind_samples"][i], path,
+                                          "steps.wind_samples[" + std::to_string(i) + "]", 0, kInt);
       if (s.wind_samples > 0) {
         s.wind_body = {st["wind_x_body"][i].get<double>(), st["wind_y_body"][i].get<double>(),
                        st["wind_z_body"][i].get<double>()};
@@ -455,7 +625,10 @@ SweepDef read_sweep_file(const std::string& path) {
       def.scenario_path = (p.is_absolute() ? p : folder / p).lexically_normal().string();
     } else if (key == "runs" && node.is_integer()) {
       const auto runs = node.as_integer()->get();
-      if (runs < 1 || runs > 100000000) fail("runs: must be an integer >= 1");
+      if (runs < 1 || runs > kMaxCampaignRuns) {
+        fail("runs: must be an integer >= 1 and <= " + std::to_string(kMaxCampaignRuns) + " (got " +
+             std::to_string(runs) + ")");
+      }
       def.runs = static_cast<int>(runs);
     } else if (key == "seed" && node.is_integer()) {
       const auto seed = node.as_integer()->get();
@@ -555,7 +728,7 @@ const ExpandedSweep* find_sweep(const std::vector<ExpandedSweep>& sweeps, const 
 // the first columns' names: sweep, point, then one per axis key
 std::string axis_header(const std::vector<std::string>& keys) {
   std::string header = "sweep,point";
-  for (const auto& k : keys) header += ',' + k;
+  for (const auto& k : keys) header += ',' + csv_text(k);
   return header;
 }
 
@@ -568,7 +741,8 @@ std::string axis_cells(const ExpandedSweep& sweep, int point,
     for (std::size_t a = 0; a < sweep.def.axes.size(); ++a) {
       if (sweep.def.axes[a].key != key) continue;
       const ConfigValue& v = sweep.points[static_cast<std::size_t>(point)].values[a];
-      cells += std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v);
+      cells += std::holds_alternative<std::string>(v) ? csv_text(std::get<std::string>(v))
+                                                      : format_value(v);
     }
   }
   return cells;
@@ -595,12 +769,12 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
     if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
     const RunResult& m = r.result;
-    out << r.sweep << ',' << r.point << axis_cells(*sweep, r.point, keys) << ',' << r.trial << ','
-        << m.seed << ',' << r.config_hash << ',' << outcome_name(m.outcome) << ','
-        << (m.outcome == Outcome::kSuccess ? 1 : 0) << ',' << csv_number(m.time) << ','
-        << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ',' << csv_number(m.overhead) << ','
-        << m.losses << ',' << csv_number(m.odor_fraction) << ',' << m.steps << ',' << m.wind_samples
-        << '\n';
+    out << csv_text(r.sweep) << ',' << r.point << axis_cells(*sweep, r.point, keys) << ','
+        << r.trial << ',' << m.seed << ',' << csv_text(r.config_hash) << ','
+        << csv_text(outcome_name(m.outcome)) << ',' << (m.outcome == Outcome::kSuccess ? 1 : 0)
+        << ',' << csv_number(m.time) << ',' << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ','
+        << csv_number(m.overhead) << ',' << m.losses << ',' << csv_number(m.odor_fraction) << ','
+        << m.steps << ',' << m.wind_samples << '\n';
   }
   file.commit();
 }
@@ -619,10 +793,10 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
     for (const auto& p : sweep.points) {
       const auto results = point_runs(rows, sweep.def.name, p.index, runs);
       const PointStats st = summarize(results);
-      out << sweep.def.name << ',' << p.index << axis_cells(sweep, p.index, keys) << ',' << st.runs
-          << ',' << st.successes << ',' << st.walls << ',' << st.timeouts << ',' << st.gave_up
-          << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo) << ','
-          << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
+      out << csv_text(sweep.def.name) << ',' << p.index << axis_cells(sweep, p.index, keys) << ','
+          << st.runs << ',' << st.successes << ',' << st.walls << ',' << st.timeouts << ','
+          << st.gave_up << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo)
+          << ',' << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
           << csv_number(st.overhead.mean) << ',' << csv_number(st.overhead.lo) << ','
           << csv_number(st.overhead.hi) << ',' << csv_number(st.overhead_quartiles.median) << ','
           << csv_number(st.overhead_quartiles.q1) << ',' << csv_number(st.overhead_quartiles.q3)
@@ -630,6 +804,17 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
     }
   }
   file.commit();
+}
+
+std::string recorded_path(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path normal = fs::path(path).lexically_normal();
+  std::error_code ec;
+  const fs::path here = fs::current_path(ec);
+  if (!normal.is_absolute() || ec) return normal.string();
+  const fs::path inside = normal.lexically_relative(here.lexically_normal());
+  if (inside.empty() || *inside.begin() == "..") return normal.string();
+  return inside.string();
 }
 
 void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
@@ -664,7 +849,7 @@ void write_results_json(const std::string& path, const std::vector<ExpandedSweep
     }
     doc_sweeps.push_back({{"name", sweep.def.name},
                           {"title", sweep.def.title},
-                          {"file", sweep.def.file},
+                          {"file", recorded_path(sweep.def.file)},
                           {"seed", sweep.def.seed},
                           {"runs_per_point", runs},
                           {"axes", axes},

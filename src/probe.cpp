@@ -19,10 +19,13 @@ double warmup_of(const ProbeOptions& options, const Scenario& scenario) {
 
 void check_probe_options(const ProbeOptions& options, const Scenario& scenario) {
   const double dt = scenario.sim.dt;
-  if ((warmup_of(options, scenario) + options.duration) / dt > kMaxSteps) {
-    throw ConfigError("--warmup, --duration: must be at most 1e9 steps of sim.dt together");
+  static_assert(kMaxSteps == 1e7, "the message below names the limit");
+  if (!((warmup_of(options, scenario) + options.duration) / dt <= kMaxSteps)) {
+    throw ConfigError("--warmup, --duration: must be at most 1e7 steps of sim.dt together");
   }
-  if (std::lround(options.duration / dt) < std::max(1L, std::lround(options.interval / dt))) {
+  // why: compared before rounding, so that a huge interval never reaches lround
+  if (!(options.interval <= options.duration) ||
+      std::lround(options.duration / dt) < std::max(1L, std::lround(options.interval / dt))) {
     throw ConfigError("--duration: must be at least --interval, or no sample is taken");
   }
 }

@@ -260,7 +260,7 @@ json sweep_definition_json(const SweepDef& def) {
   }
   json settings = json::object();
   for (const auto& s : def.settings) settings[s.key] = value_to_json(s.value);
-  return {{"name", def.name}, {"title", def.title}, {"scenario", def.scenario_path},
+  return {{"name", def.name}, {"title", def.title}, {"scenario", recorded_path(def.scenario_path)},
           {"set", settings},  {"axes", axes},       {"runs", def.runs},
           {"seed", def.seed}};
 }
@@ -500,8 +500,9 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   json defs = json::array();
   for (const auto& s : sweeps) {
     if (s.def.name.find('/') != std::string::npos) continue;
-    defs.push_back(
-        {{"name", s.def.name}, {"file", s.def.file}, {"definition", sweep_definition_json(s.def)}});
+    defs.push_back({{"name", s.def.name},
+                    {"file", recorded_path(s.def.file)},
+                    {"definition", sweep_definition_json(s.def)}});
   }
   doc["sweeps"] = defs;
   return doc.dump(1);

@@ -34,10 +34,18 @@ double unscale(double si, double scale) {
   return si / scale;
 }
 
+// a bound or count as people write it: 0.5, 1200, 1e7, 1.3e-6
 std::string bound_text(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  std::string s(buf);
+  const auto e = s.find('e');
+  if (e == std::string::npos) return s;
+  // 1e+07 -> 1e7, 1.3e-06 -> 1.3e-6
+  std::string exponent = s.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return s.substr(0, e + 1) + (negative ? "-" : "") + exponent;
 }
 
 // why: the names and their order come from the controller registry, so they are written once
@@ -192,7 +200,8 @@ std::vector<Field> scenario_fields(Scenario& s) {
       {"wind.vz", "constant wind velocity, z component (m/s)", any(s.wind.velocity.z)},
       {"plume.preset", "preset the plume rows start from",
        choice(s.plume.preset, {"lochmatter2008", "paper-literal"})},
-      {"plume.release_rate", "filaments released per second (1/s)", positive(s.plume.release_rate)},
+      {"plume.release_rate", "filaments released per second (1/s)",
+       NumberField{&s.plume.release_rate, 0.0, kMaxReleaseRate, true, false}},
       {"plume.release_shape", "release region around the source centre",
        choice(s.plume.release_shape, {"ball", "disc"})},
       {"plume.initial_width", "width of a new filament (m)", positive(s.plume.initial_width)},
@@ -205,7 +214,7 @@ std::vector<Field> scenario_fields(Scenario& s) {
        non_negative(s.plume.gamma)},
       {"plume.lifetime", "how filaments leave", choice(s.plume.lifetime, {"ring", "leave_arena"})},
       {"plume.capacity", "ring-buffer size (filaments), lifetime = ring",
-       IntegerField{&s.plume.capacity, 1, 100000000}},
+       IntegerField{&s.plume.capacity, 1, kMaxCapacity}},
       {"plume.kernel", "concentration kernel", choice(s.plume.kernel, {"gaussian", "printed"})},
       {"plume.cutoff", "filaments farther than this contribute nothing (m, may be inf)",
        NumberField{&s.plume.cutoff, 0.0, INFINITY, true, false, 1.0, true}},
@@ -319,11 +328,22 @@ void validate(const Scenario& scenario) {
   if (scenario.sim.dt > scenario.supervisor.timeout) {
     throw ConfigError("sim.dt: must not exceed supervisor.timeout");
   }
-  if (scenario.sim.warmup / scenario.sim.dt > kMaxSteps) {
-    throw ConfigError("sim.warmup: must be at most 1e9 steps of sim.dt");
-  }
-  if (scenario.supervisor.timeout / scenario.sim.dt > kMaxSteps) {
-    throw ConfigError("supervisor.timeout: must be at most 1e9 steps of sim.dt");
+  const double dt = scenario.sim.dt;
+  const auto steps = [&](const char* key, double time) {
+    if (time / dt > kMaxSteps) {
+      throw ConfigError(std::string(key) + ": must be at most " + bound_text(kMaxSteps) +
+                        " steps of sim.dt (got " + bound_text(time) + " s / " + bound_text(dt) +
+                        " s = " + bound_text(time / dt) + " steps)");
+    }
+  };
+  steps("sim.warmup", scenario.sim.warmup);
+  steps("supervisor.timeout", scenario.supervisor.timeout);
+  const double per_step = scenario.plume.release_rate * dt;
+  if (per_step > kMaxReleasePerStep) {
+    throw ConfigError("plume.release_rate: must release at most " + bound_text(kMaxReleasePerStep) +
+                      " filaments per step of sim.dt (got " +
+                      bound_text(scenario.plume.release_rate) + " /s * " + bound_text(dt) +
+                      " s = " + bound_text(per_step) + ")");
   }
 }
 

@@ -22,8 +22,39 @@ std::string hash_text(const std::string& text) {
   return buf;
 }
 
+namespace {
+
+// the file a sweep came from, or its name, for messages
+std::string sweep_where(const SweepDef& def) {
+  return def.file.empty() ? "sweep " + def.name : def.file;
+}
+
+}  // namespace
+
+std::int64_t grid_points(const SweepDef& def) {
+  std::int64_t count = 1;
+  double product = 1.0;  // for the message: may exceed any integer
+  std::string sizes;
+  for (const auto& axis : def.axes) {
+    const auto size = static_cast<std::int64_t>(axis.values.size());
+    product *= static_cast<double>(size);
+    sizes += (sizes.empty() ? "" : " x ") + std::to_string(size);
+    // why: checked before each multiplication, so the count never overflows
+    count = size > 0 && count > kMaxGridPoints / size ? kMaxGridPoints + 1 : count * size;
+  }
+  if (count > kMaxGridPoints) {
+    char total[40];
+    std::snprintf(total, sizeof total, "%.3g", product);
+    throw ConfigError(sweep_where(def) + ": the grid has " + sizes + " = " + total +
+                      " points, more than the " + std::to_string(kMaxGridPoints) +
+                      " a sweep may have (split it into several sweeps)");
+  }
+  return count;
+}
+
 ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& overrides) {
-  const std::string where = def.file.empty() ? "sweep " + def.name : def.file;
+  const std::string where = sweep_where(def);
+  const auto count = static_cast<std::size_t>(grid_points(def));
   for (const auto& o : overrides) {
     for (const auto& axis : def.axes) {
       if (o.key == axis.key) {
@@ -40,8 +71,7 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
   base.insert(base.end(), overrides.begin(), overrides.end());
 
   ExpandedSweep out{def, {}};
-  std::size_t count = 1;
-  for (const auto& axis : def.axes) count *= axis.values.size();
+  out.points.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     // the grid in row-major order: the first axis varies slowest
     SweepPoint point;

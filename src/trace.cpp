@@ -1,13 +1,26 @@
 #include "plumetrace/trace.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "plumetrace/scenario.hpp"
 
 namespace plumetrace {
 
+namespace {
+
+// steps between snapshots: none for 0; why: an interval beyond any run (kMaxSteps) takes only
+// the snapshot at release, and never reaches lround, whose result is unspecified there
+long snapshot_steps(double interval, double dt) {
+  if (!(interval > 0.0)) return 0L;
+  const double steps = interval / dt;
+  return steps > kMaxSteps ? static_cast<long>(kMaxSteps) + 1 : std::max(1L, std::lround(steps));
+}
+
+}  // namespace
+
 TraceRecorder::TraceRecorder(Trace& trace, double snapshot_interval, double dt)
-    : trace_(trace),
-      snapshot_every_(snapshot_interval > 0.0 ? std::max(1L, std::lround(snapshot_interval / dt))
-                                              : 0L) {}
+    : trace_(trace), snapshot_every_(snapshot_steps(snapshot_interval, dt)) {}
 
 void TraceRecorder::operator()(const World& world) {
   const auto& sensor = world.wind_sensor();

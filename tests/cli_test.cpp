@@ -97,7 +97,7 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --trial 1.5", "--trial"},
       {"run --set wind.vx=inf", "wind.vx: must be a finite number"},
       {"run --set robot.start_heading_deg=200", "robot.start_heading_deg"},
-      {"run --set sim.dt=1e-300", "at most 1e9 steps"},
+      {"run --set sim.dt=1e-300", "at most 1e7 steps"},
       {"probe --points 1,0,nan", "--points"},
       {"probe --points 1,0,0 --duration 0.1 --interval 1", "--duration"},
   };

@@ -32,6 +32,10 @@ void write_text_file(const std::string& path, std::string_view text);
 /// Throws IoError naming `path` when it cannot be written (it tries, and leaves nothing behind).
 void check_writable(const std::string& path);
 
+/// The most dotted segments a key in a TOML file may have (config keys have two): deeper keys
+/// are refused, naming the file and the key, before they are walked.
+inline constexpr int kMaxKeyDepth = 16;
+
 /// Reads a TOML scenario file into settings (one per key, in file order); throws ConfigError
 /// naming the file when it cannot be read or is not valid TOML (with line and column).
 std::vector<Setting> read_scenario_file(const std::string& path);
@@ -118,7 +122,14 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
 void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                        const std::vector<RunRow>& rows, int runs_override);
 
-/// Writes the sweeps, their points with statistics, and every run as one JSON document.
+/// A file's path as results record it (results.json, summary.json): lexically normal ("./a/../b"
+/// is "b") and, when it lies inside the current folder, relative to it; a path outside it is kept
+/// as given. So results do not depend on how a path was spelled, and a path typed relative never
+/// becomes an absolute path of this machine.
+std::string recorded_path(const std::string& path);
+
+/// Writes the sweeps, their points with statistics, and every run as one JSON document; each
+/// sweep's file as recorded_path gives it.
 void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                         const std::vector<RunRow>& rows, int runs_override);
 

@@ -33,7 +33,7 @@ struct ProbeResult {
   long samples = 0;
 };
 
-/// Checks that the options take at least one sample and at most 1e9 steps; throws ConfigError
+/// Checks that the options take at least one sample and at most kMaxSteps steps; throws ConfigError
 /// naming the option.
 void check_probe_options(const ProbeOptions& options, const Scenario& scenario);
 

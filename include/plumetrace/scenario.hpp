@@ -58,8 +58,24 @@ struct Scenario {
   ControllerParams controller;   ///< algorithm and its parameters
 };
 
-/// The most steps a warm-up or a run may take (keeps bad input from running for ever).
-inline constexpr double kMaxSteps = 1e9;
+/// The most steps of sim.dt a warm-up or a run may take: 1e7, 270 times the paper's run (37500
+/// steps), about a minute of the default plume. why: a tiny sim.dt would otherwise run for hours
+/// without a word (1.3e-6 s: two hours; issue 13, F23).
+inline constexpr double kMaxSteps = 1e7;
+
+/// The largest plume.release_rate (1/s): 1e6, 10^4 times the paper's 100/s. why: every released
+/// filament is stepped, and kept until it leaves under plume.lifetime = leave_arena; at 1e20 a
+/// run never ends (issue 13, F9).
+inline constexpr double kMaxReleaseRate = 1e6;
+
+/// The most filaments released in one step (plume.release_rate * sim.dt): 1e6. why: the count is
+/// converted to an integer and released one by one; a large sim.dt must not make it huge (the
+/// conversion is undefined from 2^64).
+inline constexpr double kMaxReleasePerStep = 1e6;
+
+/// The largest plume.capacity (filaments): 1e7, 6250 times the default 1600. why: the ring is
+/// reserved at the start of every run, 40 bytes a filament (400 MB at the limit, per thread).
+inline constexpr int kMaxCapacity = 10'000'000;
 
 /// A bad configuration: names the dotted key (or file) and what is allowed.
 class ConfigError : public std::runtime_error {

@@ -17,6 +17,19 @@
 
 namespace plumetrace {
 
+/// The most grid points one sweep may have: 1e5. why: every point's scenario is resolved,
+/// hashed and stored before the first run (about 0.3 ms and 4 KB of store a point: 30 s and
+/// 400 MB at the limit); a larger grid expanded for minutes without a word, and 16 axes of 16
+/// values overflowed the count to 0 points (issue 13, F10).
+inline constexpr std::int64_t kMaxGridPoints = 100'000;
+
+/// The most runs one command may define, points times runs per point over all its sweeps (and so
+/// the most runs per point): 1e7. why: the list of runs to do is built before the first run
+/// (about 220 bytes a run: 2.2 GB at the limit) and the store and the exports hold every run; at
+/// the default scenario's 0.15 s a run it is 17 core-days (issue 13, F3: 1e8 runs took 7 GB
+/// and aborted).
+inline constexpr std::int64_t kMaxCampaignRuns = 10'000'000;
+
 /// One varied config key and its values.
 struct Axis {
   /// Dotted config key.
@@ -67,8 +80,13 @@ struct ExpandedSweep {
   std::vector<SweepPoint> points;  ///< grid points
 };
 
-/// Expands a sweep into its grid points; `overrides` (--set) apply after the sweep's own
-/// settings and may not name an axis key. Throws ConfigError naming the sweep, axis and value.
+/// The number of grid points of a sweep (the product of its axes' sizes, computed without
+/// overflow); throws ConfigError naming the file and the count when it is above kMaxGridPoints.
+std::int64_t grid_points(const SweepDef& def);
+
+/// Expands a sweep into its grid points (none before grid_points has checked their number);
+/// `overrides` (--set) apply after the sweep's own settings and may not name an axis key. Throws
+/// ConfigError naming the sweep, axis and value.
 ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& overrides);
 
 /// FNV-1a 64-bit hash of a text, as 16 hex digits.

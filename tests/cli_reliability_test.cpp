@@ -49,6 +49,19 @@ TEST(CliReliability, OutOfMemoryIsReportedWithExitThreeNotAnAbort) {
   EXPECT_NE(o.err.find("out of memory"), std::string::npos) << o.err;
 }
 
+// F3 with F2: out of memory in a sweep's worker thread reaches main's catch-all through the pool
+TEST(CliReliability, OutOfMemoryInASweepWorkerIsExitThreeNotAnAbort) {
+  const std::string sweep = testing::write_temp(
+      "sweep", ".toml",
+      "name = \"oom\"\nruns = 1\n[set]\nplume.capacity = 10000000\n"
+      "[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
+  const std::string store = testing::temp_path("oom", ".sqlite");
+  const Output o = cli_limited("-v 300000", "sweep " + sweep + " --quiet --threads 1 --store " +
+                                                store + " --out " + store + ".out");
+  EXPECT_EQ(o.code, 3) << o.err;
+  EXPECT_NE(o.err.find("out of memory"), std::string::npos) << o.err;
+}
+
 // a FIFO in place of a file: made fresh, so that nothing has written to it
 std::string make_fifo(const std::string& suffix) {
   const std::string path = testing::temp_path("fifo", suffix);

@@ -97,7 +97,7 @@ inline constexpr int kIoFailure = 3;
 inline constexpr int kInterrupted = 130;
 
 /// The exit code for an error: kBadInput for bad input (ConfigError, StoreError), kIoFailure
-/// for I/O (IoError, filesystem errors); rethrows any other exception.
+/// for I/O (IoError, StoreIoError, filesystem errors); rethrows any other exception.
 int exit_code(const std::exception_ptr& error);
 
 /// Prints "plumetrace: error: " + `prefix` + the error's message on stderr; returns exit_code.

@@ -101,6 +101,42 @@ bool is_io_failure(int code) {
   throw StoreError("results store '" + path + "' is damaged: " + why);
 }
 
+// whether `text` is valid UTF-8
+bool is_utf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = c < 0x80           ? 1
+                          : (c >> 5) == 0x6  ? 2
+                          : (c >> 4) == 0xe  ? 3
+                          : (c >> 3) == 0x1e ? 4
+                                             : 0;
+    if (n == 0 || i + n > text.size()) return false;
+    for (std::size_t k = 1; k < n; ++k) {
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return false;
+    }
+    i += n;
+  }
+  return true;
+}
+
+// a value read from a store, for a message: at most 40 bytes, control bytes (and the bytes of
+// text that is not UTF-8) as \xHH
+std::string shown(std::string_view text) {
+  const bool utf8 = is_utf8(text);
+  std::string out;
+  for (const char ch : text.substr(0, 40)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f || (c >= 0x80 && !utf8)) {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    } else {
+      out += ch;
+    }
+  }
+  return text.size() > 40 ? out + "..." : out;
+}
+
 // a prepared statement, finalized on scope exit
 class Statement {
  public:
@@ -336,7 +372,7 @@ Layout layout_of(sqlite3* db, const std::string& path, std::string* found = null
       for (const auto& [name, cols] : tables) {
         std::string list;
         for (const auto& c : cols) list += (list.empty() ? "" : ", ") + c;
-        *found += (found->empty() ? "" : ", ") + name + "(" + list + ")";
+        *found += (found->empty() ? "" : ", ") + shown(name) + "(" + shown(list) + ")";
       }
       if (found->empty()) *found = "views, triggers or indexes";
     }
@@ -468,7 +504,7 @@ std::optional<Outcome> outcome_from(const std::string& name) {
 }
 
 std::string key_text(const RunRow& r) {
-  return "sweep " + r.sweep + ", point " + std::to_string(r.point) + ", trial " +
+  return "sweep " + shown(r.sweep) + ", point " + std::to_string(r.point) + ", trial " +
          std::to_string(r.trial);
 }
 
@@ -496,10 +532,9 @@ class RowReader {
 
   void name(std::string row) { row_ = std::move(row); }
   [[noreturn]] void bad(int col, const std::string& column, const std::string& why) const {
-    std::string value = q_.text(col);
-    if (value.size() > 40) value = value.substr(0, 40) + "...";
     damaged(path_, row_ + ": column " + column + " holds " + type_name(q_.type(col)) +
-                       (q_.type(col) == SQLITE_NULL ? "" : " '" + value + "'") + ", " + why);
+                       (q_.type(col) == SQLITE_NULL ? "" : " '" + shown(q_.text(col)) + "'") +
+                       ", " + why);
   }
   std::string text(int col, const std::string& column) const {
     if (q_.type(col) != SQLITE_TEXT) bad(col, column, "not text");
@@ -610,7 +645,8 @@ std::string meta_value(sqlite3* db, const std::string& path, const std::string& 
 int runs_value(const std::string& path, const std::string& key, const std::string& text) {
   const auto v = whole_number(text, 0, INT_MAX);
   if (!v) {
-    damaged(path, "meta key '" + key + "' holds '" + text + "', not a whole number of runs");
+    damaged(path, "meta key '" + shown(key) + "' holds '" + shown(text) +
+                      "', not a whole number of runs");
   }
   return static_cast<int>(*v);
 }
@@ -633,7 +669,7 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
   };
   const std::string& schema = need("schema");
   if (schema != kSchemaVersion && schema != kLegacySchema) {
-    damaged(path, "its schema is '" + schema + "'; this plumetrace reads schema " +
+    damaged(path, "its schema is '" + shown(schema) + "'; this plumetrace reads schema " +
                       std::string(kSchemaVersion) + " (and " + std::string(kLegacySchema) + ")");
   }
   if (!nlohmann::json::accept(need("definition"))) {
@@ -648,7 +684,8 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
     char extra = 0;
     if (std::sscanf(meta["shard"].c_str(), "%d/%d%c", &i, &n, &extra) != 2 || i < 1 || n < 1 ||
         i > n) {
-      damaged(path, "meta key 'shard' holds '" + meta["shard"] + "', not i/n with 1 <= i <= n");
+      damaged(path,
+              "meta key 'shard' holds '" + shown(meta["shard"]) + "', not i/n with 1 <= i <= n");
     }
   }
   const char* keys[2] = {"check:runs", "check:points"};
@@ -657,7 +694,7 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
     if (schema == kLegacySchema && !meta.count(keys[t])) continue;
     checks[t] = parse_checksum(need(keys[t]));
     if (!checks[t]) {
-      damaged(path, "meta key '" + std::string(keys[t]) + "' holds '" + meta[keys[t]] +
+      damaged(path, "meta key '" + std::string(keys[t]) + "' holds '" + shown(meta[keys[t]]) +
                         "', not a checksum (COUNT HEX)");
     }
   }
@@ -701,7 +738,7 @@ StoreContents load(sqlite3* db, const std::string& path) {
       p.config_hash = in.text(3, "config_hash");
       p.config = in.text(4, "config");
       if (!hash_of_point.emplace(std::pair{p.sweep, p.point}, p.config_hash).second) {
-        damaged(path, "it holds sweep " + p.sweep + ", point " + std::to_string(p.point) +
+        damaged(path, "it holds sweep " + shown(p.sweep) + ", point " + std::to_string(p.point) +
                           " twice in table points");
       }
       points_sum.add(hash_of(p));
@@ -730,8 +767,9 @@ StoreContents load(sqlite3* db, const std::string& path) {
         damaged(path, "run (" + key_text(r) + ") has no point in table points");
       }
       if (point->second != r.config_hash) {
-        damaged(path, "run (" + key_text(r) + "): column config_hash holds '" + r.config_hash +
-                          "', but its point's is '" + point->second + "'");
+        damaged(path, "run (" + key_text(r) + "): column config_hash holds '" +
+                          shown(r.config_hash) + "', but its point's is '" + shown(point->second) +
+                          "'");
       }
       runs_sum.add(hash_of(r));
       c.rows.push_back(std::move(r));
@@ -796,7 +834,7 @@ void put_meta(sqlite3* db, const std::string& path, const std::string& key,
 Checksum stored_checksum(sqlite3* db, const std::string& path, const std::string& key) {
   const std::string text = meta_value(db, path, key);
   const auto sum = parse_checksum(text);
-  if (!sum) damaged(path, "meta key '" + key + "' holds '" + text + "', not a checksum");
+  if (!sum) damaged(path, "meta key '" + key + "' holds '" + shown(text) + "', not a checksum");
   return *sum;
 }
 

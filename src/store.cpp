@@ -290,10 +290,15 @@ class ReadOnlyStore {
     db_ = open_db(path, path, SQLITE_OPEN_READONLY);
     try {
       ReadTransaction probe(db_, path);
-    } catch (const StoreIoError&) {
+    } catch (const StoreIoError& e) {
       sqlite3_close(db_);
       db_ = nullptr;
-      if (has_journal(path)) throw;
+      if (has_journal(path)) {
+        throw StoreIoError(std::string(e.what()) + "; its journal '" + path +
+                           "-wal' holds runs not yet in the file, which SQLite cannot read "
+                           "without writing next to it: run this once as a user who may write "
+                           "the folder, or copy the store with its -wal file");
+      }
       db_ = open_db(file_uri(path) + "?immutable=1", path, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
     } catch (...) {
       sqlite3_close(db_);
@@ -884,7 +889,7 @@ class RunWriter {
 
 Store::Store(const std::string& path, const std::string& definition, std::string_view version,
              bool fresh)
-    : path_(path) {
+    : path_(path), definition_(definition) {
   db_ = open_db(path, path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   try {
     if (sqlite3_db_readonly(db_, "main") == 1) {
@@ -982,8 +987,17 @@ std::string Store::meta(const std::string& key) const { return meta_value(db_, p
 
 std::string Store::definition() const { return meta("definition"); }
 
+void Store::check_definition() const {
+  if (meta("definition") != definition_) {
+    throw StoreError("results store '" + path_ +
+                     "' was emptied for another definition by another process (--fresh?) while "
+                     "this one wrote it; nothing more is written to it");
+  }
+}
+
 void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
   in_transaction([&] {
+    check_definition();
     Statement put(db_,
                   "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, config) "
                   "VALUES (?, ?, ?, ?, ?)",
@@ -1012,6 +1026,7 @@ void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
 
 void Store::insert(const std::vector<RunRow>& rows) {
   in_transaction([&] {
+    check_definition();
     RunWriter writer(db_, path_);
     for (const auto& r : rows) {
       if (writer.add(r) == RunWriter::Added::kDifferent) {
@@ -1026,7 +1041,10 @@ void Store::insert(const std::vector<RunRow>& rows) {
 
 void Store::put_plan(const std::vector<std::pair<std::string, int>>& runs,
                      const std::string& shard) {
-  in_transaction([&] { write_plan(runs, shard); });
+  in_transaction([&] {
+    check_definition();
+    write_plan(runs, shard);
+  });
 }
 
 void Store::write_plan(const std::vector<std::pair<std::string, int>>& runs,
@@ -1097,6 +1115,7 @@ MergeReport Store::absorb(const std::vector<std::string>& parts,
                           const std::vector<std::pair<std::string, int>>& runs) {
   MergeReport report;
   in_transaction([&] {
+    check_definition();
     {
       Statement put_point(db_,
                           "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, "

@@ -290,6 +290,22 @@ TEST(StoreConcurrency, TwoStoresOnOneFileSkipIdenticalRunsAndRefuseDifferentOnes
   EXPECT_EQ(read_store_rows(path, nullptr).size(), 8u);
 }
 
+TEST(StoreConcurrency, AStoreEmptiedForAnotherDefinitionMeanwhileTakesNoMoreRuns) {
+  const auto sweeps = two_plumes();
+  const std::vector<ExpandedSweep> other{
+      expand_sweep(read_sweep_file(kSweep), {parse_override("sim.dt=0.04")})};
+  const std::string path = testing::temp_path("emptied", ".sqlite");
+  Store a(path, campaign_definition(sweeps), version(), false);
+  CampaignOptions options;
+  options.threads = 1;
+  run_campaign(sweeps, a, 1, options);
+  const auto rows = a.rows();
+  Store b(path, campaign_definition(other), version(), true);  // another process's --fresh
+  const std::string message = error_of([&] { a.insert(rows); });
+  expect_names(message, {path, "another definition"});
+  EXPECT_TRUE(b.rows().empty());
+}
+
 TEST(StoreConcurrency, ThreeSweepsOnOneStoreAllFinishWithTheExportsOfOne) {
   const std::string store = testing::temp_path("together", ".sqlite");
   std::vector<std::string> outs;

@@ -127,8 +127,10 @@ class Store {
                      const std::vector<std::pair<std::string, int>>& runs);
   void in_transaction(const std::function<void()>& work);
   std::string meta(const std::string& key) const;
+  void check_definition() const;
 
   std::string path_;
+  std::string definition_;
   sqlite3* db_ = nullptr;
 };
 

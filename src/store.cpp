@@ -8,6 +8,7 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -220,8 +221,6 @@ const std::map<std::string, std::vector<std::string>>& schema_columns() {
         "d_u", "overhead", "losses", "odor_fraction", "steps", "wind_samples"}}};
   return columns;
 }
-
-enum class Access { kRead, kWrite };
 
 sqlite3* open_db(const std::string& name, const std::string& path, int flags) {
   sqlite3* db = nullptr;

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <thread>
 
 #include "plumetrace/io.hpp"
 
@@ -884,6 +886,38 @@ class RunWriter {
   Checksum sum_;
 };
 
+// switches the store to WAL journaling unless it is already; why: the switch needs the file to
+// itself and SQLite does not wait for that, so when other processes open the same new store at
+// once it is retried until one of them has switched it
+void use_wal(sqlite3* db, const std::string& path) {
+  const auto mode = [&](const char* sql, int& rc) {
+    sqlite3_stmt* q = nullptr;
+    rc = sqlite3_prepare_v2(db, sql, -1, &q, nullptr);
+    if (rc == SQLITE_OK) rc = sqlite3_step(q);
+    std::string text;
+    if (rc == SQLITE_ROW) {
+      const auto* p = sqlite3_column_text(q, 0);
+      text = p ? reinterpret_cast<const char*>(p) : "";
+      rc = SQLITE_OK;
+    }
+    sqlite3_finalize(q);
+    return text;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    int rc = SQLITE_OK;
+    if (mode("PRAGMA journal_mode", rc) == "wal" && rc == SQLITE_OK) return;
+    if (rc == SQLITE_OK && mode("PRAGMA journal_mode=WAL", rc) == "wal" && rc == SQLITE_OK) return;
+    const bool waited_enough =
+        std::chrono::steady_clock::now() - start > std::chrono::milliseconds(kBusyTimeoutMs);
+    if (rc != SQLITE_OK && ((rc & 0xff) != SQLITE_BUSY || waited_enough)) fail(db, rc, path);
+    if (waited_enough) {
+      throw StoreIoError("results store '" + path + "': cannot switch it to WAL journaling");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
 }  // namespace
 
 Store::Store(const std::string& path, const std::string& definition, std::string_view version,
@@ -923,7 +957,8 @@ Store::Store(const std::string& path, const std::string& definition, std::string
     }
     // why: WAL with synchronous=NORMAL keeps every committed batch through a kill -9, and lets
     // readers read while another process writes
-    exec("PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;");
+    use_wal(db_, path_);
+    exec("PRAGMA synchronous=NORMAL;");
     in_transaction([&] {
       // again under the write lock: another process may have made the store meanwhile
       std::string found;

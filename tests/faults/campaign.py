@@ -58,6 +58,7 @@ class Campaign:
         self.failures = []
         self.checks = 0
         self._clean = {}
+        self.kept = []  # runs held by each store left by a kill, for the summary
         self.runs = SHORT
         self._count = 0
 
@@ -139,9 +140,11 @@ class Campaign:
         text, code, err = self.exports(store)
         if text is None:
             self.check(code == 2 and "is empty" in err, "%s: killed store refused: %s" % (what, err))
+            self.kept.append(0)
             return
         clean = self.runs_lines(self.clean()[1])
         self.check(self.runs_lines(text) <= clean, "%s: a killed store holds changed runs" % what)
+        self.kept.append(len(self.runs_lines(text)))
 
     # --- cases ---------------------------------------------------------------------------------
 
@@ -386,8 +389,12 @@ def main(argv):
         for name in names:
             start = time.monotonic()
             campaign.runs = SHORT
+            campaign.kept = []
             try:
                 getattr(campaign, name)()
+                if campaign.kept:
+                    print("%s: %d stores left by a kill or a failed write held %s runs" %
+                          (name, len(campaign.kept), sorted(campaign.kept)))
                 print("%s: done in %.1f s" % (name, time.monotonic() - start), flush=True)
             except Skip as e:
                 print("%s: skipped: %s" % (name, e), flush=True)

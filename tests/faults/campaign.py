@@ -166,6 +166,7 @@ class Campaign:
             self.check(self.exports(store)[0] == clean, "kill_sweep %d: exports differ" % i)
 
     def shards(self):
+        """The stores of the sweep's three shards (--shard i/3), computed undisturbed."""
         parts = []
         for i in (1, 2, 3):
             part = self.path("part%d.sqlite" % i)
@@ -211,11 +212,11 @@ class Campaign:
         subprocess.run(self.mpi_command(self.path("timing.sqlite"), self.path("timing-out")),
                        capture_output=True, timeout=LIMIT_S, env=env)
         span = time.monotonic() - start
-        for i in range(3):
+        for i in range(4):
             store, out = self.path("mpi.sqlite"), self.path("mpi-out")
             # why: mpirun and its ranks share the session, so the whole job dies at once, as on a
             # machine that fails
-            self.kill_at(self.mpi_command(store, out), self.rng.uniform(0.2 * span, span), env=env)
+            self.kill_at(self.mpi_command(store, out), self.rng.uniform(0.3 * span, span), env=env)
             if os.path.exists(store):
                 self.expect_partial(store, "kill_mpi %d" % i)
             p = subprocess.run(self.mpi_command(store, out), capture_output=True, text=True,

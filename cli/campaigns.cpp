@@ -597,6 +597,8 @@ int exit_code(const std::exception_ptr& error) {
     std::rethrow_exception(error);
   } catch (const ConfigError&) {
     return kBadInput;
+  } catch (const StoreIoError&) {
+    return kIoFailure;
   } catch (const StoreError&) {
     return kBadInput;
   } catch (const std::filesystem::filesystem_error&) {

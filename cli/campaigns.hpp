@@ -102,8 +102,8 @@ inline constexpr int kOutOfMemory = kIoFailure;
 inline constexpr int kInternalError = 1;
 
 /// The exit code for an error: kBadInput for bad input (ConfigError, StoreError), kIoFailure
-/// for I/O (IoError, filesystem errors), kOutOfMemory for std::bad_alloc, kInternalError for
-/// anything else.
+/// for I/O (IoError, StoreIoError, filesystem errors), kOutOfMemory for std::bad_alloc,
+/// kInternalError for anything else.
 int exit_code(const std::exception_ptr& error);
 
 /// Prints "plumetrace: error: " + `prefix` + the error's message on stderr; returns exit_code.

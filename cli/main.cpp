@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -108,6 +109,9 @@ void print_human(const pt::RunResult& r, const pt::RunInfo& info) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // why: past a file size limit (ulimit -f) a write then fails with EFBIG, which is reported
+  // naming the file (exit 3), where SIGXFSZ would kill the process mid-write
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"plumetrace: odor plume tracking simulator and benchmark"};
   app.set_version_flag("--version", std::string(pt::version()));
   app.require_subcommand(1);

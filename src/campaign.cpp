@@ -94,14 +94,25 @@ std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
 CampaignResult run_campaign(const std::vector<ExpandedSweep>& sweeps, Store& store,
                             int runs_override, const CampaignOptions& options, const Shard& shard,
                             const TaskRunner& runner) {
-  store.put_points(sweeps);
-  std::vector<std::pair<std::string, int>> runs;
-  for (const auto& s : sweeps) runs.emplace_back(s.def.name, runs_per_point(s, runs_override));
-  store.put_plan(runs, shard_text(shard));
   const auto tasks = missing_runs(sweeps, store.keys(), runs_override, shard);
-  const RowSink sink = [&](const std::vector<RunRow>& batch) { store.insert(batch); };
+  // the points and the runs asked for are recorded with the first runs (or once the runner is
+  // done), so that a campaign refused before its first run leaves the store as it was
+  bool planned = false;
+  const auto plan = [&] {
+    if (planned) return;
+    std::vector<std::pair<std::string, int>> runs;
+    for (const auto& s : sweeps) runs.emplace_back(s.def.name, runs_per_point(s, runs_override));
+    store.put_points(sweeps);
+    store.put_plan(runs, shard_text(shard));
+    planned = true;
+  };
+  const RowSink sink = [&](const std::vector<RunRow>& batch) {
+    plan();
+    store.insert(batch);
+  };
   CampaignResult result =
       runner ? runner(sweeps, tasks, options, sink) : run_tasks(sweeps, tasks, options, sink);
+  plan();
   const auto defined =
       static_cast<std::int64_t>(missing_runs(sweeps, {}, runs_override, shard).size());
   result.skipped = defined - static_cast<std::int64_t>(tasks.size());

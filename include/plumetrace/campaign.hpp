@@ -44,6 +44,8 @@ std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
 /// Runs every missing run of the campaign (of `shard` of it) and stores it, in transactional
 /// batches; a stopped call keeps everything already finished, and calling again computes only
 /// what is missing. `runner` computes the runs (empty: run_tasks, the threads of this process).
+/// The points and the runs asked for are recorded with the first runs, so that a call that
+/// fails before any run (say, a runner that cannot start) leaves the store unchanged.
 CampaignResult run_campaign(const std::vector<ExpandedSweep>& sweeps, Store& store,
                             int runs_override, const CampaignOptions& options,
                             const Shard& shard = {}, const TaskRunner& runner = {});

@@ -1,4 +1,4 @@
-"""The standing fault campaign of the results store (issue 13; docs/reliability-store.md).
+"""The standing fault campaign of the results store (issue 13; docs/reliability.md, "Results stores").
 
 Each case does to `plumetrace` what happens to a tool left running overnight on the only copy of
 its results (kill -9, a second process on the same store, a full disk, a damaged or read-only

@@ -58,13 +58,15 @@ do_build() {
   cmake --build "$build" --target fuzz -j "${FUZZ_BUILD_JOBS:-$(nproc)}"
 }
 
-# the environment a target runs in: its own scratch folder, sanitizers that stop at the first report
+# the environment a target runs in: a scratch folder of this invocation (removed on exit, so that
+# two runs of one target never share one), sanitizers that stop at the first report
 fuzz_env() {
   local target="$1"
-  local tmp="$build/tmp/$target"
-  rm -rf "$tmp"
-  mkdir -p "$tmp"
-  export TMPDIR="$PWD/$tmp"
+  scratch="$build/tmp/$target.$$"
+  rm -rf "$scratch"
+  mkdir -p "$scratch"
+  trap 'rm -rf "$scratch"' EXIT
+  export TMPDIR="$PWD/$scratch"
   export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1}"
   export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 }
@@ -90,7 +92,7 @@ do_run() {
   # shellcheck disable=SC2046,SC2086
   "$exe" $(fuzz_flags "$target") ${FUZZ_FLAGS:-} -max_total_time="$seconds" \
     -artifact_prefix="$artifacts/" "$work" "tests/fuzz/corpus/$target" || rc=$?
-  rm -rf "$build/tmp/$target"
+  rm -rf "$scratch"
   if ((rc != 0)); then
     echo "fuzz.sh: fuzz_$target found a problem (exit $rc); the input is in $artifacts/" >&2
     echo "fuzz.sh: reproduce with: scripts/fuzz.sh repro $target $artifacts/<file>" >&2
@@ -106,7 +108,6 @@ do_repro() {
   local rc=0
   # shellcheck disable=SC2046
   "$build/tests/fuzz/fuzz_$target" $(fuzz_flags "$target") "$@" || rc=$?
-  rm -rf "$build/tmp/$target"
   return "$rc"
 }
 

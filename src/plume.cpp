@@ -64,16 +64,22 @@ void block_boxes(const double* x, const double* y, std::size_t n, std::size_t bl
                  double* boxes) {
   // why: GCC's vector types, lowered to the widest registers of each clone
   using V = double __attribute__((vector_size(64)));
-  using Lanes = std::int64_t __attribute__((vector_size(64)));
   constexpr std::size_t kWidth = sizeof(V) / sizeof(double);
   const auto load = [](V& v, const double* p) { std::memcpy(&v, p, sizeof(V)); };
   // the extreme of the lanes, folding halves onto each other
   const auto fold = [](V v, auto smaller) {
-    for (const Lanes swap : {Lanes{4, 5, 6, 7, 0, 1, 2, 3}, Lanes{2, 3, 0, 1, 6, 7, 4, 5},
-                             Lanes{1, 0, 3, 2, 5, 4, 7, 6}}) {
-      const V w = __builtin_shuffle(v, swap);
-      v = smaller(w, v) ? w : v;
-    }
+    const auto keep = [&](const V& w) { v = smaller(w, v) ? w : v; };
+    // why: clang (the fuzz build, tests/fuzz) spells GCC's shuffle with constant lanes
+#if defined(__clang__)
+    keep(__builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
+    keep(__builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5));
+    keep(__builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6));
+#else
+    using Lanes = std::int64_t __attribute__((vector_size(64)));
+    keep(__builtin_shuffle(v, Lanes{4, 5, 6, 7, 0, 1, 2, 3}));
+    keep(__builtin_shuffle(v, Lanes{2, 3, 0, 1, 6, 7, 4, 5}));
+    keep(__builtin_shuffle(v, Lanes{1, 0, 3, 2, 5, 4, 7, 6}));
+#endif
     return v[0];
   };
   const auto below = [](const V& a, const V& b) { return a < b; };

@@ -229,7 +229,8 @@ kernel = "gaussian"
 preset = "paper-literal"
 )");
   const Reading r = read_reading(folder, "mixed");
-  const Scenario& s = reading_sets(nine_sets(), r, false)[0].points[0].scenario;
+  const auto sets = reading_sets(nine_sets(), r, false);
+  const Scenario& s = sets[0].points[0].scenario;
   EXPECT_EQ(s.plume.preset, PlumePreset::kPaperLiteral);
   EXPECT_EQ(s.plume.kernel, Kernel::kGaussian);
   // the scenario file's own rows (noise "velocity", release "ball") gave way to the preset's

@@ -1,0 +1,67 @@
+// Fuzz target: a results store (the input is the SQLite file), read as `plumetrace export` reads
+// it (read_store_rows, the definition compared with the sweep's, then runs.csv, summary.csv and
+// results.json written), and described as `merge` and `sweep --store` describe it
+// (read_store_info). The sweep is tests/fuzz/store_sweep.toml, of which the seed stores are made.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fuzz_support.hpp"
+#include "plumetrace/io.hpp"
+#include "plumetrace/store.hpp"
+#include "plumetrace/sweep.hpp"
+
+namespace pf = plumetrace::fuzz;
+
+namespace {
+
+struct Campaign {
+  std::vector<plumetrace::ExpandedSweep> sweeps;
+  std::string definition;
+};
+
+const Campaign& campaign() {
+  static const Campaign c = [] {
+    Campaign out;
+    const auto file = std::filesystem::path(PLUMETRACE_SOURCE_DIR) / "tests/fuzz/store_sweep.toml";
+    out.sweeps.push_back(plumetrace::expand_sweep(plumetrace::read_sweep_file(file.string()), {}));
+    out.definition = plumetrace::campaign_definition(out.sweeps);
+    return out;
+  }();
+  return c;
+}
+
+// the store and every file SQLite may have made beside it (a mutated header can ask for WAL)
+void remove_store(const std::filesystem::path& store) {
+  std::error_code ec;
+  for (const char* suffix : {"", "-journal", "-wal", "-shm"}) {
+    std::filesystem::remove(store.string() + suffix, ec);
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const Campaign& c = campaign();
+  const auto store = pf::scratch() / "results.sqlite";
+  const auto out = pf::scratch() / "export";
+  remove_store(store);
+  pf::write_file(store, std::string_view(reinterpret_cast<const char*>(data), size));
+
+  pf::guarded([&] {
+    std::string definition;
+    const auto rows = plumetrace::read_store_rows(store.string(), &definition);
+    // export refuses a store of another campaign (StoreError) before it writes anything
+    if (definition != c.definition) return;
+    std::filesystem::create_directories(out);
+    plumetrace::write_runs_csv((out / "runs.csv").string(), c.sweeps, rows);
+    plumetrace::write_summary_csv((out / "summary.csv").string(), c.sweeps, rows, 0);
+    plumetrace::write_results_json((out / "results.json").string(), c.sweeps, rows, 0);
+  });
+  pf::guarded([&] { (void)plumetrace::read_store_info(store.string()); });
+  remove_store(store);
+  return 0;
+}

@@ -1,0 +1,60 @@
+// Fuzz target: a sweep file and --set overrides, read and expanded as `plumetrace sweep` and
+// `export` do (read_sweep_file, expand_sweep, campaign_definition).
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+
+#include "fuzz_support.hpp"
+#include "plumetrace/io.hpp"
+#include "plumetrace/sweep.hpp"
+
+namespace pf = plumetrace::fuzz;
+
+namespace {
+
+// why: the harness's own cap, so that an input cannot ask for a grid that takes minutes to
+// expand; it is below any cap the library sets (F10), so it hides no finding of the parser
+constexpr std::size_t kMaxPoints = 64;
+
+// the folder the sweep file is written to: two levels below a copy of scenarios/, so that the
+// experiments' `scenario = "../../scenarios/lochmatter2008.toml"` resolves as in the repository
+std::filesystem::path sweep_folder() {
+  static const std::filesystem::path folder = [] {
+    const auto root = pf::scratch();
+    std::filesystem::create_directories(root / "scenarios");
+    std::filesystem::create_directories(root / "experiments" / "set");
+    for (const char* name : {"lochmatter2008.toml", "paper-literal.toml"}) {
+      std::filesystem::copy_file(
+          std::filesystem::path(PLUMETRACE_SOURCE_DIR) / "scenarios" / name,
+          root / "scenarios" / name, std::filesystem::copy_options::overwrite_existing);
+    }
+    return root / "experiments" / "set";
+  }();
+  return folder;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const pf::TomlInput input = pf::split_toml_input(data, size);
+  const auto path = sweep_folder() / "sweep.toml";
+  pf::write_file(path, input.file);
+
+  pf::guarded([&] {
+    const plumetrace::SweepDef def = plumetrace::read_sweep_file(path.string());
+    std::size_t points = 1;
+    for (const auto& axis : def.axes) {
+      if (axis.values.empty()) pf::finding("read_sweep_file accepted an empty axis " + axis.key);
+      if (axis.values.size() > kMaxPoints / points) return;
+      points *= axis.values.size();
+    }
+    const plumetrace::ExpandedSweep sweep =
+        plumetrace::expand_sweep(def, pf::parse_sets(input.sets));
+    if (sweep.points.size() != points) {
+      pf::finding("expand_sweep made " + std::to_string(sweep.points.size()) + " points of a " +
+                  std::to_string(points) + "-point grid");
+    }
+    (void)plumetrace::campaign_definition({sweep});
+  });
+  return 0;
+}

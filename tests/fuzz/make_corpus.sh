@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# Writes the seed corpora of the fuzz targets into tests/fuzz/corpus/TARGET/: copies of the
+# scenario and sweep files of the repository, a short run's traces and a tiny sweep's store made
+# by the plumetrace command, and slightly broken variants of each. Run it again after a change
+# of the file formats (it rewrites only the files it makes; regress-* inputs are kept).
+#
+#   tests/fuzz/make_corpus.sh [PATH/TO/plumetrace]    (default: build/plumetrace)
+#
+# Needs sqlite3 (the command-line shell) to shrink and vary the store.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+P="$(realpath "${1:-build/plumetrace}")"
+corpus=tests/fuzz/corpus
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$corpus"/{scenario,sweep,trace,store}
+
+# the --set separator of the TOML targets (tests/fuzz/fuzz_support.hpp)
+with_sets() {
+  cat "$1"
+  printf '\n#--set\n'
+  shift
+  printf '%s\n' "$@"
+}
+
+# scenario: the repository's scenarios and readings, the resolved form, --set lines, mistakes
+s="$corpus/scenario"
+cp scenarios/lochmatter2008.toml "$s/lochmatter2008.toml"
+cp scenarios/paper-literal.toml "$s/paper-literal.toml"
+for f in experiments/lochmatter2008/presets/*.toml; do cp "$f" "$s/preset-$(basename "$f")"; done
+"$P" config >"$s/resolved.toml"
+with_sets scenarios/lochmatter2008.toml controller.algorithm=surge-spiral plume.preset=printed \
+  wind.vx=0.5 supervisor.timeout=inf >"$s/sets.toml"
+with_sets /dev/null plume.kernel=gaussian robot.start_heading_deg=-90 casting.beta_deg=45 \
+  >"$s/sets-only.toml"
+printf '[plume]\nsigma_p = -1.0\n' >"$s/bad-range.toml"
+printf '[plume]\nsigma_pp = 0.02\n' >"$s/bad-key.toml"
+printf '[robot]\nstart_x = "far"\n' >"$s/bad-type.toml"
+printf '[sim]\ndt = 0.032\nwarmup = [1, 2]\n' >"$s/bad-array.toml"
+printf '[arena\nx_min = 0\n' >"$s/bad-syntax.toml"
+printf 'sim.dt = 1e-3\narena.x_max = 1.5\n' >"$s/dotted.toml"
+with_sets /dev/null sim.dt nosuch.key=1 'controller.algorithm=' >"$s/bad-sets.toml"
+
+# sweep: the experiment sets, the golden sweep, the store seeds' sweep, --set lines, mistakes
+w="$corpus/sweep"
+for f in experiments/lochmatter2008/*.toml; do cp "$f" "$w/$(basename "$f")"; done
+cp tests/golden/sweep.toml "$w/golden.toml"
+cp tests/fuzz/store_sweep.toml "$w/store_sweep.toml"
+with_sets tests/golden/sweep.toml supervisor.timeout=60 robot.start_y=0.5 >"$w/sets.toml"
+with_sets tests/golden/sweep.toml wind_sensor.sigma_a=0.3 >"$w/bad-set-axis.toml"
+printf 'name = "e"\n[[axis]]\nkey = "wind.vx"\nvalues = []\n' >"$w/bad-empty-axis.toml"
+printf 'name = "d"\n[[axis]]\nkey = "wind.vx"\nvalues = [1.0]\n[[axis]]\nkey = "wind.vx"\nvalues = [2.0]\n' \
+  >"$w/bad-twice.toml"
+printf 'name = "u"\n[[axis]]\nkey = "wind.vz"\nvalues = [0.1, "x"]\n' >"$w/bad-value.toml"
+printf 'title = "no name"\nruns = 0\n[[axis]]\nkey = "sim.dt"\nvalues = [0.01]\n' >"$w/bad-name.toml"
+printf 'name = "s"\nscenario = "missing.toml"\n[[axis]]\nkey = "sim.dt"\nvalues = [0.01]\n' \
+  >"$w/bad-scenario.toml"
+
+# trace: a short run written as .json and .csv, and broken variants
+t="$corpus/trace"
+short=(--set sim.dt=0.1 --set sim.warmup=1 --set supervisor.timeout=1.2 --set plume.capacity=12
+  --set plume.release_rate=10 --set robot.start_x=1.8)
+"$P" run "${short[@]}" --trace "$tmp/run.json" --snapshot-interval 0.6 >/dev/null
+"$P" run "${short[@]}" --trace "$tmp/run.csv" --snapshot-interval 0.6 >/dev/null
+"$P" run "${short[@]}" --algorithm surge-spiral --set robot.start_x=1.3 --set supervisor.timeout=2 \
+  --trace "$tmp/success.json" --snapshot-interval 0 >/dev/null
+cp "$tmp/run.json" "$t/run.json"
+cp "$tmp/success.json" "$t/success.json"
+cp "$tmp/run.csv" "$t/run.csv"
+cp "$tmp/run.filaments.csv" "$t/run.filaments.csv"
+/usr/bin/python3 - "$tmp/run.json" "$t" <<'EOF'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+out = sys.argv[2]
+def write(name, d):
+    with open(f"{out}/{name}", "w") as f:
+        json.dump(d, f, separators=(",", ":"))
+d = json.loads(json.dumps(doc)); d["steps"]["x"] = d["steps"]["x"][:-1]; write("bad-column.json", d)
+d = json.loads(json.dumps(doc)); del d["result"]["outcome"]; write("bad-missing.json", d)
+d = json.loads(json.dumps(doc)); d["result"]["outcome"] = "lost"; write("bad-outcome.json", d)
+d = json.loads(json.dumps(doc)); d["config"]["plume"]["sigma_p"] = -1; write("bad-config.json", d)
+d = json.loads(json.dumps(doc)); d["snapshots"] = [{"time": 0, "x": [1], "y": [], "z": [], "w": []}]
+write("bad-snapshot.json", d)
+d = json.loads(json.dumps(doc)); del d["plumetrace_trace"]; write("bad-not-trace.json", d)
+EOF
+
+# store: a tiny sweep's store with 512-byte pages, and variants (WAL, partial, other campaign,
+# empty, not a database)
+r="$corpus/store"
+"$P" sweep tests/fuzz/store_sweep.toml --store "$tmp/fz.sqlite" --out "$tmp/out" --quiet >/dev/null
+sqlite3 "$tmp/fz.sqlite" "PRAGMA journal_mode=DELETE; PRAGMA page_size=512; VACUUM;" >/dev/null
+cp "$tmp/fz.sqlite" "$r/fz.sqlite"
+cp "$tmp/fz.sqlite" "$tmp/slim.sqlite"
+sqlite3 "$tmp/slim.sqlite" "UPDATE points SET config = 'x'; VACUUM;"
+cp "$tmp/slim.sqlite" "$r/slim.sqlite"
+cp "$tmp/slim.sqlite" "$tmp/wal.sqlite"
+sqlite3 "$tmp/wal.sqlite" "PRAGMA journal_mode=WAL;" >/dev/null
+cp "$tmp/wal.sqlite" "$r/slim-wal.sqlite"
+cp "$tmp/slim.sqlite" "$tmp/partial.sqlite"
+sqlite3 "$tmp/partial.sqlite" "DELETE FROM runs WHERE point = 1 AND trial = 1; VACUUM;"
+cp "$tmp/partial.sqlite" "$r/slim-partial.sqlite"
+cp "$tmp/slim.sqlite" "$tmp/other.sqlite"
+sqlite3 "$tmp/other.sqlite" "UPDATE meta SET value = '{\"sweeps\":[]}' WHERE key = 'definition'; VACUUM;"
+cp "$tmp/other.sqlite" "$r/slim-other-definition.sqlite"
+: >"$r/empty.sqlite"
+printf 'not a database\n' >"$r/bad-text.sqlite"
+mkdir -p tests/fuzz/dict
+/usr/bin/python3 tests/fuzz/make_dict.py "$s/resolved.toml" tests/fuzz/dict/toml.dict
+echo "make_corpus: seeds in $corpus/{scenario,sweep,trace,store}; tests/fuzz/dict/toml.dict"

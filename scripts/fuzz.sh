@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz with clang, AddressSanitizer and
-# UndefinedBehaviorSanitizer into a build of their own, and runs them (docs/reliability-fuzz.md).
+# UndefinedBehaviorSanitizer into a build of their own, and runs them (docs/reliability.md, "Fuzzing and sanitizers").
 #
 #   scripts/fuzz.sh build                  configure and build the targets (ccache when present)
 #   scripts/fuzz.sh run TARGET [SECONDS]   fuzz one target from its seed corpus for SECONDS

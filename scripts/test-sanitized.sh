@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer: builds every target
 # with g++ -fsanitize=address,undefined (-fno-sanitize-recover: the first report fails the test)
-# into build-asan/, then runs ctest there (docs/reliability-fuzz.md). Too slow for every CI run;
+# into build-asan/, then runs ctest there (docs/reliability.md, "Fuzzing and sanitizers"). Too slow for every CI run;
 # run it before a release and after changes to memory handling.
 #
 #   scripts/test-sanitized.sh [CTEST ARGS...]     e.g. -R Store or -LE browser

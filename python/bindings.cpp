@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -339,6 +340,25 @@ void attach(const py::handle& error, const char* name, const py::object& value) 
   if (PyObject_SetAttrString(error.ptr(), name, value.ptr()) != 0) PyErr_Clear();
 }
 
+// Ctrl-C while C++ threads run without the GIL: Python sees a signal only when a thread that
+// holds the GIL looks, so the caller's progress callback looks, and a raising handler stops the
+// work; `signal` then holds the handler's error for the caller to raise.
+struct SignalWatch {
+  std::atomic<bool> stop{false};
+  std::unique_ptr<py::error_already_set> signal;
+
+  std::function<void(const pt::Progress&)> on_progress() {
+    return [this](const pt::Progress&) {
+      if (stop) return;
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        signal = std::make_unique<py::error_already_set>();
+        stop = true;
+      }
+    };
+  }
+};
+
 // every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial).
 // Ctrl-C (any Python signal handler that raises) or an error of a run (a Python controller's
 // exception) stops it: runs not started are dropped, the error is raised here, and the rows
@@ -367,22 +387,15 @@ py::dict sweep(const std::string& path, const py::list& overrides, int runs, int
         " a Python sweep holds in memory; use plumetrace sweep --store for a larger campaign");
   }
   const std::vector<pt::RunTask> tasks = pt::missing_runs(sweeps, {}, runs);
-  std::atomic<bool> stop{false};
-  std::unique_ptr<py::error_already_set> signal;
+  SignalWatch watch;
+  std::atomic<bool>& stop = watch.stop;
+  std::unique_ptr<py::error_already_set>& signal = watch.signal;
   pt::CampaignOptions options;
   options.threads = threads;
   options.share_plumes = share_plumes;
   options.make_controller = python_factory(std::move(controller_factory), &stop);
   options.stop = &stop;
-  // why: the workers run without the GIL, so Python sees no signal until this thread looks
-  options.on_progress = [&](const pt::Progress&) {
-    if (stop) return;
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      signal = std::make_unique<py::error_already_set>();
-      stop = true;
-    }
-  };
+  options.on_progress = watch.on_progress();
   std::vector<pt::RunRow> rows;
   std::exception_ptr failure;
   {
@@ -501,17 +514,10 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
     options.overrides.push_back(
         {name, config_value(name, value), false, "Python", pt::Layer::kCommandLine});
   }
-  std::atomic<bool> stop{false};
-  std::unique_ptr<py::error_already_set> signal;
-  options.stop = &stop;
-  options.on_progress = [&](const pt::Progress&) {
-    if (stop) return;
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      signal = std::make_unique<py::error_already_set>();
-      stop = true;
-    }
-  };
+  SignalWatch watch;
+  std::unique_ptr<py::error_already_set>& signal = watch.signal;
+  options.stop = &watch.stop;
+  options.on_progress = watch.on_progress();
   pt::CalibrationResult result;
   {
     py::gil_scoped_release release;

@@ -846,6 +846,39 @@ Checksum stored_checksum(sqlite3* db, const std::string& path, const std::string
 
 // adds runs inside a write transaction: a run the store holds already is compared instead, and
 // the runs' checksum is kept with them
+// Inserts the points not stored yet and keeps the "check:points" checksum with them; finish()
+// writes the checksum, inside the caller's transaction.
+class PointWriter {
+ public:
+  PointWriter(sqlite3* db, const std::string& path)
+      : db_(db),
+        path_(path),
+        put_(db,
+             "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, config) "
+             "VALUES (?, ?, ?, ?, ?)",
+             path),
+        sum_(stored_checksum(db, path, "check:points")) {}
+
+  void put(const StoredPoint& point) {
+    put_.bind(1, point.sweep);
+    put_.bind(2, static_cast<std::int64_t>(point.point));
+    put_.bind(3, point.axis_values);
+    put_.bind(4, point.config_hash);
+    put_.bind(5, point.config);
+    put_.step();
+    put_.reset();
+    if (sqlite3_changes(db_) > 0) sum_.add(hash_of(point));
+  }
+
+  void finish() { put_meta(db_, path_, "check:points", sum_.text()); }
+
+ private:
+  sqlite3* db_;
+  const std::string& path_;
+  Statement put_;
+  Checksum sum_;
+};
+
 class RunWriter {
  public:
   enum class Added { kNew, kSame, kDifferent };
@@ -1032,11 +1065,7 @@ void Store::check_definition() const {
 void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
   in_transaction([&] {
     check_definition();
-    Statement put(db_,
-                  "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, config) "
-                  "VALUES (?, ?, ?, ?, ?)",
-                  path_);
-    Checksum sum = stored_checksum(db_, path_, "check:points");
+    PointWriter writer(db_, path_);
     for (const auto& sweep : sweeps) {
       for (const auto& p : sweep.points) {
         StoredPoint point{sweep.def.name, p.index, "", p.config_hash, scenario_to_toml(p.scenario)};
@@ -1044,17 +1073,10 @@ void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
           point.axis_values +=
               (a ? ", " : "") + sweep.def.axes[a].key + " = " + format_value(p.values[a]);
         }
-        put.bind(1, point.sweep);
-        put.bind(2, static_cast<std::int64_t>(point.point));
-        put.bind(3, point.axis_values);
-        put.bind(4, point.config_hash);
-        put.bind(5, point.config);
-        put.step();
-        put.reset();
-        if (sqlite3_changes(db_) > 0) sum.add(hash_of(point));
+        writer.put(point);
       }
     }
-    put_meta(db_, path_, "check:points", sum.text());
+    writer.finish();
   });
 }
 
@@ -1151,24 +1173,11 @@ MergeReport Store::absorb(const std::vector<std::string>& parts,
   in_transaction([&] {
     check_definition();
     {
-      Statement put_point(db_,
-                          "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, "
-                          "config) VALUES (?, ?, ?, ?, ?)",
-                          path_);
-      Checksum sum = stored_checksum(db_, path_, "check:points");
+      PointWriter points(db_, path_);
       for (const auto& part : contents) {
-        for (const auto& p : part.points) {
-          put_point.bind(1, p.sweep);
-          put_point.bind(2, static_cast<std::int64_t>(p.point));
-          put_point.bind(3, p.axis_values);
-          put_point.bind(4, p.config_hash);
-          put_point.bind(5, p.config);
-          put_point.step();
-          put_point.reset();
-          if (sqlite3_changes(db_) > 0) sum.add(hash_of(p));
-        }
+        for (const auto& p : part.points) points.put(p);
       }
-      put_meta(db_, path_, "check:points", sum.text());
+      points.finish();
     }
     // which part each merged run came from, to name both files of an overlap
     std::map<RunKey, std::size_t> origin;

@@ -3,12 +3,17 @@
 
 #include <filesystem>
 
-#include "plumetrace/distributed.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/plume.hpp"
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/store.hpp"
-#include "plumetrace/world.hpp"
+#include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/experiment/store.hpp"
+#include "plumetrace/sim/world.hpp"
 
 namespace plumetrace {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/distributed.hpp"
+#include "plumetrace/distributed/distributed.hpp"
 
 namespace plumetrace::cli {
 

@@ -13,14 +13,19 @@
 #include <vector>
 
 #include "campaigns.hpp"
-#include "plumetrace/distributed.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/probe.hpp"
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/store.hpp"
-#include "plumetrace/trace.hpp"
-#include "plumetrace/viewer.hpp"
-#include "plumetrace/world.hpp"
+#include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/probe.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/experiment/store.hpp"
+#include "plumetrace/sim/trace.hpp"
+#include "plumetrace/view/viewer.hpp"
+#include "plumetrace/sim/world.hpp"
 #include "validators.hpp"
 
 namespace pt = plumetrace;
@@ -107,6 +112,8 @@ void print_human(const pt::RunResult& r, const pt::RunInfo& info) {
 }
 
 }  // namespace
+
+namespace plumetrace::cli {
 
 int main(int argc, char** argv) {
   // why: past a file size limit (ulimit -f) a write then fails with EFBIG, which is reported
@@ -297,3 +304,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace plumetrace::cli

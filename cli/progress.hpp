@@ -3,7 +3,7 @@
 #include <atomic>
 #include <string>
 
-#include "plumetrace/sweep.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 
 namespace plumetrace::cli {
 

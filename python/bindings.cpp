@@ -17,18 +17,23 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/calibration.hpp"
-#include "plumetrace/campaign.hpp"
-#include "plumetrace/claims.hpp"
-#include "plumetrace/controller.hpp"
-#include "plumetrace/controllers.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/stats.hpp"
-#include "plumetrace/sweep.hpp"
-#include "plumetrace/trace.hpp"
-#include "plumetrace/viewer.hpp"
-#include "plumetrace/world.hpp"
+#include "lochmatter2008/calibration.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "lochmatter2008/claims.hpp"
+#include "plumetrace/agent/controller.hpp"
+#include "plumetrace/agent/controllers.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/sim/trace.hpp"
+#include "plumetrace/view/viewer.hpp"
+#include "plumetrace/sim/world.hpp"
 
 namespace py = pybind11;
 namespace pt = plumetrace;

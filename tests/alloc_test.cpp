@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <new>
 
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/world.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/world.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

@@ -1,4 +1,4 @@
-#include "plumetrace/calibration.hpp"
+#include "lochmatter2008/calibration.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/campaign.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/report.hpp"
-#include "plumetrace/store.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "lochmatter2008/summary.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {

@@ -1,4 +1,4 @@
-#include "plumetrace/claims.hpp"
+#include "lochmatter2008/claims.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "plumetrace/store.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
 

@@ -1,4 +1,4 @@
-#include "plumetrace/controllers.hpp"
+#include "plumetrace/agent/controllers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "plumetrace/robot.hpp"
+#include "plumetrace/agent/robot.hpp"
 
 namespace plumetrace {
 namespace {

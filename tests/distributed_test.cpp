@@ -1,5 +1,5 @@
 // The distributed runner's parts that need no MPI job: messages, a job of one, thread counts.
-#include "plumetrace/distributed.hpp"
+#include "plumetrace/distributed/distributed.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,12 @@
 #include <limits>
 #include <thread>
 
-#include "plumetrace/io.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
 #include "support/rows.hpp"
 
 namespace plumetrace {

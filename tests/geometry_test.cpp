@@ -1,4 +1,4 @@
-#include "plumetrace/geometry.hpp"
+#include "plumetrace/core/geometry.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "plumetrace/plume.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "plumetrace/geometry.hpp"
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/wind.hpp"
-#include "plume_loops.hpp"
-#include "vector_math.hpp"
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/env/wind.hpp"
+#include "env/plume_loops.hpp"
+#include "env/vector_math.hpp"
 
 namespace plumetrace {
 namespace {

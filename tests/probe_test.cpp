@@ -1,4 +1,4 @@
-#include "plumetrace/probe.hpp"
+#include "plumetrace/sim/probe.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/geometry.hpp"
-#include "plumetrace/scenario.hpp"
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/sim/scenario.hpp"
 
 namespace plumetrace {
 namespace {

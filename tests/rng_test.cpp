@@ -1,4 +1,4 @@
-#include "plumetrace/rng.hpp"
+#include "plumetrace/core/rng.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-#include "plumetrace/robot.hpp"
+#include "plumetrace/agent/robot.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "plumetrace/geometry.hpp"
-#include "plumetrace/measurement.hpp"
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/agent/measurement.hpp"
 
 namespace plumetrace {
 namespace {

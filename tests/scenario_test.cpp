@@ -1,11 +1,16 @@
-#include "plumetrace/scenario.hpp"
+#include "plumetrace/sim/scenario.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
-#include "plumetrace/io.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {

@@ -1,14 +1,14 @@
-#include "plumetrace/sensors.hpp"
+#include "plumetrace/agent/sensors.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "plumetrace/geometry.hpp"
-#include "plumetrace/measurement.hpp"
-#include "plumetrace/plume.hpp"
-#include "plumetrace/rng.hpp"
-#include "plumetrace/wind.hpp"
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/core/rng.hpp"
+#include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {
 namespace {

@@ -1,4 +1,4 @@
-#include "plumetrace/stats.hpp"
+#include "plumetrace/experiment/stats.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "plumetrace/rng.hpp"
+#include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
 namespace {

@@ -1,7 +1,7 @@
 // The results store's guarantees (issue 13): it never writes to a database that is not its own,
 // reads nothing damaged without saying so, opens read-only what it only reads, lets two
 // processes write one store, and names the cause of a failed write (exit 3).
-#include "plumetrace/store.hpp"
+#include "plumetrace/experiment/store.hpp"
 
 #include <gtest/gtest.h>
 #include <sqlite3.h>
@@ -15,8 +15,13 @@
 #include <functional>
 #include <sstream>
 
-#include "plumetrace/campaign.hpp"
-#include "plumetrace/io.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
 #include "support/command.hpp"
 #include "support/rows.hpp"
 #include "support/temp_path.hpp"

@@ -1,5 +1,5 @@
 // Sweep files, grid expansion, the results store and the parallel resumable runner.
-#include "plumetrace/sweep.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,10 +7,15 @@
 #include <fstream>
 #include <set>
 
-#include "plumetrace/campaign.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/report.hpp"
-#include "plumetrace/store.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "lochmatter2008/summary.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "support/rows.hpp"
 #include "support/temp_path.hpp"
 

@@ -1,5 +1,5 @@
 // The branch-free arithmetic of the plume's vector loops against libm and the normal law.
-#include "vector_math.hpp"
+#include "env/vector_math.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <iterator>
 #include <vector>
 
-#include "plumetrace/geometry.hpp"
+#include "plumetrace/core/geometry.hpp"
 
 namespace plumetrace::vmath {
 namespace {

@@ -1,7 +1,7 @@
 // The run viewer's data: traces read back exactly, what is thinned and what is kept, and the
 // HTML page and SVG figure built from them. (The page itself is tested in a browser:
 // tests/browser/viewer_test.mjs.)
-#include "plumetrace/viewer.hpp"
+#include "plumetrace/view/viewer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,12 +11,17 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "plumetrace/io.hpp"
-#include "plumetrace/trace.hpp"
-#include "plumetrace/world.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/trace.hpp"
+#include "plumetrace/sim/world.hpp"
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
-#include "view_data.hpp"
+#include "view/view_data.hpp"
 
 namespace plumetrace {
 namespace {

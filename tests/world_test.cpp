@@ -1,4 +1,4 @@
-#include "plumetrace/world.hpp"
+#include "plumetrace/sim/world.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/trace.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/trace.hpp"
 
 namespace plumetrace {
 namespace {

@@ -18,9 +18,14 @@
 #include <typeinfo>
 #include <vector>
 
-#include "plumetrace/io.hpp"
-#include "plumetrace/scenario.hpp"
-#include "plumetrace/store.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/experiment/store.hpp"
 
 namespace plumetrace::fuzz {
 

@@ -5,8 +5,13 @@
 #include <filesystem>
 
 #include "fuzz_support.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/sweep.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 
 namespace pf = plumetrace::fuzz;
 

@@ -6,8 +6,13 @@
 #include <string_view>
 
 #include "fuzz_support.hpp"
-#include "plumetrace/io.hpp"
-#include "plumetrace/viewer.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/view/viewer.hpp"
 
 namespace pf = plumetrace::fuzz;
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "plumetrace/sweep.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 
 namespace plumetrace::testing {
 

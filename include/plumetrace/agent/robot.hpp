@@ -1,0 +1,50 @@
+#pragma once
+
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/agent/measurement.hpp"
+
+namespace plumetrace {
+
+/// Khepera III differential drive (docs/model.md section 6).
+struct RobotParams {
+  /// Body radius (m).
+  double radius = 0.065;
+  /// Distance between the wheels (m).
+  double axle = 0.0885;
+  /// Wheel-speed limit (m/s); the forward speed on straight lines.
+  double wheel_speed = 0.106;
+  /// Start position and heading (m, rad): 14.5 m downwind of the source, facing upwind.
+  Pose start{15.5, 0.0, kPi};
+};
+
+/// The robot's true state.
+struct RobotState {
+  /// True pose (m, rad).
+  Pose pose;
+  /// Path length of the centre since release (m); turning on the spot adds nothing.
+  double odometer = 0.0;
+  /// The body touches the obstacle: the last move stopped at contact.
+  bool touching = false;
+};
+
+/// A solid disc the robot body cannot enter (a collidable source cylinder seen from above).
+struct Obstacle {
+  /// Centre (m).
+  Vec2 center;
+  /// Radius (m); 0 means no obstacle.
+  double radius = 0.0;
+};
+
+/// Turn rate on the spot with both wheels at the limit (rad/s).
+inline double turn_rate(const RobotParams& p) { return 2.0 * p.wheel_speed / p.axle; }
+
+/// Path length (m) the centre can drive from `pose` along an arc of curvature k (1/m, 0:
+/// straight) before it comes within `contact` (m) of `center`; infinity if it never does.
+double contact_length(const Pose& pose, double k, const Vec2& center, double contact);
+
+/// Advances the robot by dt under a command (exact arcs; turning on the spot, then driving).
+/// A move that would bring the body into `obstacle` stops at contact and sets `touching`.
+void step_robot(const RobotParams& params, const Command& command, double dt, RobotState& state,
+                const Obstacle& obstacle = {});
+
+}  // namespace plumetrace

@@ -1,0 +1,89 @@
+#pragma once
+
+#include "plumetrace/core/geometry.hpp"
+
+namespace plumetrace {
+
+/// Named sets of plume parameters (docs/model.md section 11).
+enum class PlumePreset {
+  /// the default: the plume of the default reading (docs/fidelity.md, "Which reading won"),
+  /// the plugin's plume with the amount never applied (s = 1), sigma_p = 0.02, printed kernel
+  kLochmatter2008,
+  kPaperLiteral,  ///< the equations as printed in the paper
+};
+
+/// Where new filaments appear around the source centre.
+enum class ReleaseShape { kBall, kDisc };
+
+/// How the random-walk standard deviation per step scales with dt.
+enum class NoiseMode {
+  kVelocity,  ///< std sigma_p * dt (sigma_p in m/s), the plugin's choice
+  kPerStep,   ///< std sigma_p (sigma_p in m), paper eq. 2 as printed
+  kWiener,    ///< std sigma_p * sqrt(dt) (sigma_p in m/sqrt(s)), time-step consistent
+};
+
+/// How filaments leave the simulation.
+enum class Lifetime {
+  kRing,        ///< fixed ring buffer of `capacity` filaments; a new one overwrites the oldest
+  kLeaveArena,  ///< removed once downwind of the arena's far end; no cap
+};
+
+/// The concentration contributed by one filament.
+enum class Kernel {
+  kGaussian,  ///< s / (sqrt(8 pi^3) w^3) exp(-d^2 / w^2), the plugin's
+  kPrinted,   ///< s / w^3 exp(-d / w^2), paper eq. 5 as printed
+};
+
+/// The odor source: a disc/ball around its centre.
+struct SourceParams {
+  /// Centre of the source (m).
+  Vec3 center{1.0, 0.0, 0.0};
+  /// Radius of the source (m); filaments are released within it.
+  double radius = 0.12;
+  /// Radius of a solid cylinder at the centre that the robot cannot enter (m); 0: none.
+  /// The plume does not see it. why: the 2008 wind-tunnel world's collidable source cylinder
+  /// (docs/fidelity.md, unknown 7).
+  double solid_radius = 0.05;
+};
+
+/// Every row of the plume's preset table (docs/model.md); defaults are the `lochmatter2008`
+/// preset, the plume of the default reading (docs/fidelity.md).
+struct PlumeParams {
+  /// Preset the rows below started from.
+  PlumePreset preset = PlumePreset::kLochmatter2008;
+  /// Filaments released per second (1/s).
+  double release_rate = 100.0;
+  /// Shape of the release region (radius: the source radius).
+  ReleaseShape release_shape = ReleaseShape::kBall;
+  /// Width of a new filament (m).
+  double initial_width = 0.10;
+  /// Amount of odor in one filament (molecules). why: 1, not the printed 8.3e9: the oldest
+  /// public copy of the plugin never applies the configured amount (docs/fidelity.md, unknown 1).
+  double amount = 1.0;
+  /// Scaling of the random walk with dt.
+  NoiseMode noise_mode = NoiseMode::kVelocity;
+  /// Random-walk intensity (m/s, m or m/sqrt(s) depending on noise_mode). why: the plugin
+  /// copies' 0.02 (docs/fidelity.md, unknown 3).
+  double sigma_p = 0.02;
+  /// Width growth constant per step (m^2): w += gamma / (2 w).
+  double gamma = 4e-7;
+  /// How filaments leave.
+  Lifetime lifetime = Lifetime::kRing;
+  /// Ring-buffer size (filaments), used with Lifetime::kRing.
+  int capacity = 1600;
+  /// Concentration kernel. why: paper eq. 5 as printed (docs/fidelity.md, unknown 4).
+  Kernel kernel = Kernel::kPrinted;
+  /// Filaments farther than this from a query point contribute nothing (m); may be infinite.
+  double cutoff = 1.0;
+};
+
+/// The parameters of a preset.
+PlumeParams plume_preset(PlumePreset preset);
+
+/// Standard deviation (m) of one random-walk component per step.
+double walk_stddev(const PlumeParams& params, double dt);
+
+/// Concentration contributed by one filament of width w (m) at squared distance d2 (m^2).
+double kernel_value(const PlumeParams& params, double w, double d2);
+
+}  // namespace plumetrace

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "plumetrace/experiment/store.hpp"
+#include "plumetrace/experiment/sweep.hpp"
+
+namespace plumetrace {
+
+/// Runs per point of a sweep: its own count, or `runs_override` when positive.
+int runs_per_point(const ExpandedSweep& sweep, int runs_override);
+
+/// One of `count` fixed, disjoint parts of a campaign (`index` from 1), for job arrays: trial t
+/// of a point whose plume is the campaign's g-th distinct plume (plume_indices) belongs to part
+/// (g + t) mod count + 1, so runs that share a plume stay together, every part gets its share
+/// of every plume, and a part grows with the runs per point without changing what it held.
+struct Shard {
+  int index = 1;  ///< which part, 1..count
+  int count = 1;  ///< how many parts
+};
+
+/// Parses "i/n" with 1 <= i <= n; throws ConfigError naming --shard.
+Shard parse_shard(const std::string& text);
+
+/// "i/n", or "" for the whole campaign (1/1).
+std::string shard_text(const Shard& shard);
+
+/// For each sweep and point, the index of its plume (plume_key and master seed) among the
+/// campaign's distinct plumes, numbered in campaign order.
+std::vector<std::vector<int>> plume_indices(const std::vector<ExpandedSweep>& sweeps);
+
+/// The number of runs a campaign defines (points times runs per point, over its sweeps); throws
+/// ConfigError naming the sweep file (or the sweeps) and the count when it is above
+/// kMaxCampaignRuns. Call it before a store is opened: nothing is written then.
+std::int64_t check_campaign_size(const std::vector<ExpandedSweep>& sweeps, int runs_override);
+
+/// The (sweep, point, trial) runs of a campaign (of one shard of it) that are not yet in
+/// `done`, in campaign order; checks the campaign's size first (check_campaign_size).
+std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
+                                  const std::set<RunKey>& done, int runs_override,
+                                  const Shard& shard = {});
+
+/// Runs every missing run of the campaign (of `shard` of it) and stores it, in transactional
+/// batches; a stopped call keeps everything already finished, and calling again computes only
+/// what is missing. `runner` computes the runs (empty: run_tasks, the threads of this process).
+/// The points and the runs asked for are recorded with the first runs, so that a call that
+/// fails before any run (say, a runner that cannot start) leaves the store unchanged.
+CampaignResult run_campaign(const std::vector<ExpandedSweep>& sweeps, Store& store,
+                            int runs_override, const CampaignOptions& options,
+                            const Shard& shard = {}, const TaskRunner& runner = {});
+
+/// The stored runs of one sweep point, trials 0..runs-1, in trial order (runs beyond the
+/// current runs per point are left out, so a store run with more trials can be reused).
+std::vector<RunResult> point_runs(const std::vector<RunRow>& rows, const std::string& sweep,
+                                  int point, int runs);
+
+}  // namespace plumetrace

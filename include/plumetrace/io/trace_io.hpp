@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/trace.hpp"
+#include "plumetrace/sim/world.hpp"
+
+namespace plumetrace {
+
+/// Checks a trace path before a run: a .csv or .json name (ConfigError otherwise) whose files
+/// can be created (IoError naming the file otherwise).
+void check_trace_path(const std::string& path);
+
+/// Writes a trace: `.json` as one object; `.csv` as the step table, with the filament
+/// snapshots beside it in `<stem>.filaments.csv`. Throws IoError naming the file.
+void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
+                 const RunResult& result, const RunInfo& info);
+
+/// A run read back from a `.json` trace: what it ran, how it ended and what it recorded.
+struct RecordedRun {
+  Scenario scenario;    ///< the fully resolved scenario of the run
+  RunResult result;     ///< its metrics
+  RunInfo info;         ///< algorithm, seed and trial
+  std::string version;  ///< the plumetrace version that wrote the trace
+  Trace trace;          ///< steps and filament snapshots
+};
+
+/// Reads a trace written by write_trace as `.json`; throws IoError naming the file when it cannot
+/// be read, ConfigError when it is not a plumetrace JSON trace (a `.csv` trace carries no
+/// configuration and is refused with that reason).
+RecordedRun read_trace(const std::string& path);
+
+}  // namespace plumetrace

@@ -1,0 +1,176 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/agent/controllers.hpp"
+#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/agent/robot.hpp"
+#include "plumetrace/agent/sensors.hpp"
+#include "plumetrace/env/wind.hpp"
+
+namespace plumetrace {
+
+/// Time stepping (docs/model.md section 2).
+struct SimParams {
+  /// Time step for plume, sensors, control and motion (s).
+  double dt = 0.032;
+  /// Plume-only time before the robot is released (s).
+  double warmup = 20.0;
+};
+
+/// The rectangular arena with walls on all four sides (m).
+struct ArenaParams {
+  /// Upwind end (m).
+  double x_min = 0.0;
+  /// Downwind end (m).
+  double x_max = 16.0;
+  /// Right-hand wall (m).
+  double y_min = -2.0;
+  /// Left-hand wall (m).
+  double y_max = 2.0;
+};
+
+/// When a run ends (docs/model.md section 8).
+struct SupervisorParams {
+  /// Success once the robot centre is this close to the source centre in (x, y) (m).
+  double success_radius = 0.185;
+  /// Simulated time after release at which the run fails (s).
+  double timeout = 1200.0;
+};
+
+/// Everything one run depends on besides (seed, trial); defaults are the paper's setup.
+struct Scenario {
+  SimParams sim;                 ///< time stepping
+  ArenaParams arena;             ///< walls
+  SourceParams source;           ///< odor source
+  WindParams wind;               ///< wind field
+  PlumeParams plume;             ///< filament plume
+  OdorSensorParams odor;         ///< odor sensor
+  WindSensorParams wind_sensor;  ///< wind sensor
+  RobotParams robot;             ///< the robot and its start
+  SupervisorParams supervisor;   ///< when a run ends
+  ControllerParams controller;   ///< algorithm and its parameters
+};
+
+/// The most steps of sim.dt a warm-up or a run may take: 1e7, 270 times the paper's run (37500
+/// steps), about a minute of the default plume. why: a tiny sim.dt would otherwise run for hours
+/// without a word (1.3e-6 s: two hours; issue 13, F23).
+inline constexpr double kMaxSteps = 1e7;
+
+/// The largest plume.release_rate (1/s): 1e6, 10^4 times the paper's 100/s. why: every released
+/// filament is stepped, and kept until it leaves under plume.lifetime = leave_arena; at 1e20 a
+/// run never ends (issue 13, F9).
+inline constexpr double kMaxReleaseRate = 1e6;
+
+/// The most filaments released in one step (plume.release_rate * sim.dt): 1e6. why: the count is
+/// converted to an integer and released one by one; a large sim.dt must not make it huge (the
+/// conversion is undefined from 2^64).
+inline constexpr double kMaxReleasePerStep = 1e6;
+
+/// The largest plume.capacity (filaments): 1e7, 6250 times the default 1600. why: the ring is
+/// reserved at the start of every run, 40 bytes a filament (400 MB at the limit, per thread).
+inline constexpr int kMaxCapacity = 10'000'000;
+
+/// A value as read from a file or the command line.
+using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
+
+/// A real-valued key: file value times `scale` gives the SI value.
+struct NumberField {
+  double* value;                ///< where the SI value lives
+  double min = -INFINITY;       ///< lower bound (SI)
+  double max = INFINITY;        ///< upper bound (SI)
+  bool min_open = false;        ///< the lower bound itself is excluded
+  bool max_open = false;        ///< the upper bound itself is excluded
+  double scale = 1.0;           ///< SI value = file value * scale
+  bool allow_infinite = false;  ///< "inf" is a valid value
+};
+
+/// An integer key.
+struct IntegerField {
+  int* value;        ///< where the value lives
+  std::int64_t min;  ///< smallest allowed
+  std::int64_t max;  ///< largest allowed
+};
+
+/// A key with a fixed set of names.
+struct ChoiceField {
+  std::vector<std::string> names;  ///< allowed names, indexed by choice
+  std::function<int()> get;        ///< index of the current choice
+  std::function<void(int)> set;    ///< selects a choice by index
+};
+
+/// One config key bound to its place in a Scenario.
+struct Field {
+  /// Dotted key, e.g. "plume.sigma_p".
+  std::string key;
+  /// One line: meaning and unit.
+  std::string help;
+  /// Type, range and location of the value.
+  std::variant<NumberField, IntegerField, ChoiceField> kind;
+};
+
+/// Every config key of a scenario, in file order; the one list used by files, CLI and Python.
+std::vector<Field> scenario_fields(Scenario& scenario);
+
+/// Sets one key from a typed value; throws ConfigError naming the key and the allowed range.
+void set_field(Scenario& scenario, std::string_view key, const ConfigValue& value);
+
+/// Sets one key from text as typed on the command line ("0.5", "casting", "inf").
+void set_field_text(Scenario& scenario, std::string_view key, std::string_view text);
+
+/// The current value of a key, as it would be written to a file.
+ConfigValue get_field(const Scenario& scenario, std::string_view key);
+
+/// Checks every key's range and the relations between keys; throws ConfigError.
+void validate(const Scenario& scenario);
+
+/// Formats a number so it reads back to the same double ("inf" for infinity).
+std::string format_number(double value);
+
+/// Formats a config value for display.
+std::string format_value(const ConfigValue& value);
+
+/// The fully resolved scenario as TOML that reads back to the same scenario: every key, in the
+/// order of the field list, with its help as a comment. Its hash identifies a sweep point.
+std::string scenario_to_toml(const Scenario& scenario);
+
+/// Where a setting comes from; later layers override earlier ones.
+enum class Layer {
+  kFile,         ///< a scenario file
+  kSweep,        ///< a sweep file's [set] table
+  kCommandLine,  ///< --set, --algorithm, --preset
+  kAxis,         ///< a sweep axis value
+};
+
+/// One key = value setting, from a file (typed) or the command line (text to parse).
+struct Setting {
+  /// Dotted key.
+  std::string key;
+  /// The value; with `text` set it is a string still to be parsed for the key's type.
+  ConfigValue value;
+  /// The value came from the command line as text.
+  bool text = false;
+  /// Where it came from, for error messages ("--set", a file name); may be empty.
+  std::string origin;
+  /// Which layer it belongs to.
+  Layer layer = Layer::kCommandLine;
+};
+
+/// Splits a command-line "key.path=value"; throws ConfigError when there is no '='.
+Setting parse_override(std::string_view text);
+
+/// Builds a scenario from defaults and settings applied in order. A `plume.preset` setting (the
+/// last one wins) resets every plume row to that preset: plume rows of earlier layers are
+/// dropped, rows of its own layer or later ones still win whatever their order. Every other
+/// setting is applied in order; finally the whole scenario is validated. Throws ConfigError
+/// naming the key.
+Scenario build_scenario(const std::vector<Setting>& settings);
+
+}  // namespace plumetrace

@@ -1,0 +1,168 @@
+// What the distributed runner needs with or without MPI: the launcher's environment, thread
+// counts and the messages' byte format.
+#include "plumetrace/distributed/distributed.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+#include <type_traits>
+
+#include "plumetrace/core/errors.hpp"
+
+namespace plumetrace {
+
+namespace {
+
+// why: all ranks run the same build on the same kind of machine (an MPI job), so values travel
+// as their native bytes, doubles with every bit
+class Writer {
+ public:
+  template <typename T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* p = reinterpret_cast<const char*>(&value);
+    bytes_.insert(bytes_.end(), p, p + sizeof value);
+  }
+  void put(const std::string& text) {
+    put(static_cast<std::uint32_t>(text.size()));
+    bytes_.insert(bytes_.end(), text.begin(), text.end());
+  }
+  std::vector<char> take() { return std::move(bytes_); }
+
+ private:
+  std::vector<char> bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<char>& bytes) : bytes_(bytes) {}
+  template <typename T>
+  T get() {
+    T value;
+    need(sizeof value);
+    std::memcpy(&value, bytes_.data() + at_, sizeof value);
+    at_ += sizeof value;
+    return value;
+  }
+  std::string text() {
+    const auto size = get<std::uint32_t>();
+    need(size);
+    std::string out(bytes_.data() + at_, size);
+    at_ += size;
+    return out;
+  }
+  void expect_end() const {
+    if (at_ != bytes_.size()) throw IoError("MPI: a message has bytes left over");
+  }
+
+ private:
+  void need(std::size_t n) const {
+    if (bytes_.size() - at_ < n) throw IoError("MPI: a message ends too early");
+  }
+  const std::vector<char>& bytes_;
+  std::size_t at_ = 0;
+};
+
+int env_int(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : 0;
+}
+
+}  // namespace
+
+bool mpi_launched() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK"}) {
+    if (std::getenv(name)) return true;
+  }
+  return false;
+}
+
+int launched_ranks() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    if (const int n = env_int(name); n > 0) return n;
+  }
+  // srun with PMIx says the size only through Slurm's own variables
+  if (std::getenv("PMIX_RANK") && env_int("SLURM_NTASKS") > 0) return env_int("SLURM_NTASKS");
+  return 1;
+}
+
+int threads_per_rank(const Ranks& ranks, int threads) {
+  if (threads > 0) return threads;
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::max(1, cores / std::max(1, ranks.local_size()));
+}
+
+std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
+  Writer w;
+  w.put(static_cast<std::uint32_t>(rows.size()));
+  for (const RunRow& r : rows) {
+    const RunResult& m = r.result;
+    w.put(r.sweep);
+    w.put(static_cast<std::int32_t>(r.point));
+    w.put(r.trial);
+    w.put(r.config_hash);
+    w.put(static_cast<std::int32_t>(m.outcome));
+    for (const double v : {m.time, m.d_t, m.d_u, m.overhead, m.odor_fraction}) w.put(v);
+    w.put(static_cast<std::int32_t>(m.losses));
+    w.put(m.steps);
+    w.put(m.wind_samples);
+    w.put(m.seed);
+    w.put(m.trial);
+  }
+  return w.take();
+}
+
+std::vector<RunRow> decode_rows(const std::vector<char>& bytes) {
+  Reader in(bytes);
+  std::vector<RunRow> rows(in.get<std::uint32_t>());
+  for (RunRow& r : rows) {
+    RunResult& m = r.result;
+    r.sweep = in.text();
+    r.point = in.get<std::int32_t>();
+    r.trial = in.get<std::uint64_t>();
+    r.config_hash = in.text();
+    m.outcome = static_cast<Outcome>(in.get<std::int32_t>());
+    for (double* v : {&m.time, &m.d_t, &m.d_u, &m.overhead, &m.odor_fraction}) {
+      *v = in.get<double>();
+    }
+    m.losses = in.get<std::int32_t>();
+    m.steps = in.get<std::int64_t>();
+    m.wind_samples = in.get<std::int64_t>();
+    m.seed = in.get<std::uint64_t>();
+    m.trial = in.get<std::uint64_t>();
+  }
+  in.expect_end();
+  return rows;
+}
+
+std::vector<char> encode_groups(const std::vector<TaskGroup>& groups) {
+  Writer w;
+  w.put(static_cast<std::uint32_t>(groups.size()));
+  for (const TaskGroup& g : groups) {
+    w.put(static_cast<std::uint32_t>(g.size()));
+    for (const RunTask& t : g) {
+      w.put(static_cast<std::int32_t>(t.sweep));
+      w.put(static_cast<std::int32_t>(t.point));
+      w.put(t.trial);
+    }
+  }
+  return w.take();
+}
+
+std::vector<TaskGroup> decode_groups(const std::vector<char>& bytes) {
+  Reader in(bytes);
+  std::vector<TaskGroup> groups(in.get<std::uint32_t>());
+  for (TaskGroup& g : groups) {
+    g.resize(in.get<std::uint32_t>());
+    for (RunTask& t : g) {
+      t.sweep = in.get<std::int32_t>();
+      t.point = in.get<std::int32_t>();
+      t.trial = in.get<std::uint64_t>();
+    }
+  }
+  in.expect_end();
+  return groups;
+}
+
+}  // namespace plumetrace

@@ -1,0 +1,358 @@
+#include "plumetrace/env/filament_plume.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "plume_loops.hpp"
+#include "vector_math.hpp"
+
+// why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
+// operations that round identically at every width, so every version gives the same bits
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    !defined(PLUMETRACE_NO_VECTOR_CLONES)
+#define PLUMETRACE_VECTOR_CLONES \
+  __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define PLUMETRACE_VECTOR_CLONES
+#endif
+
+namespace plumetrace {
+
+namespace {
+
+// the kernel's amount over w^3, without the exponential
+double kernel_scale(const PlumeParams& params) {
+  // why: the plugin normalises the 3-D Gaussian and squares the distance
+  // (docs/model.md section 4.6)
+  static const double kNorm = std::sqrt(8.0 * kPi * kPi * kPi);
+  return params.kernel == Kernel::kGaussian ? params.amount / kNorm : params.amount;
+}
+
+// one filament's concentration at squared distance d2, given h = 1 / w; 0 at or beyond the
+// cut-off (no division, so that the query vectorises cheaply)
+template <Kernel kKernel>
+double kernel_at(double scale, double cut2, double h, double d2) {
+  const double h2 = h * h;
+  const double arg = kKernel == Kernel::kGaussian ? d2 * h2 : std::sqrt(d2) * h2;
+  const double v = scale * (h2 * h) * vmath::exp_neg(-arg);
+  return d2 < cut2 ? v : 0.0;
+}
+
+// the concentrations of m filaments at u, one per filament
+template <Kernel kKernel>
+[[gnu::always_inline]] inline void kernel_loop(const Vec3& u, const double* __restrict x,
+                                               const double* __restrict y,
+                                               const double* __restrict z,
+                                               const double* __restrict h, std::int64_t m,
+                                               double scale, double cut2, double* __restrict out) {
+  const double ux = u.x, uy = u.y, uz = u.z;
+  for (std::int64_t k = 0; k < m; ++k) {
+    const double dx = ux - x[k], dy = uy - y[k], dz = uz - z[k];
+    out[k] = kernel_at<kKernel>(scale, cut2, h[k], dx * dx + dy * dy + dz * dz);
+  }
+}
+
+// why: the vector lambdas below are inlined and never cross a call boundary, so GCC's note that
+// passing 64-byte vectors changes the ABI between clones does not apply
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// the x and y range of each block of `block` filaments, as (x min, x max, y min, y max);
+// min and max are exact, so any grouping gives the same
+PLUMETRACE_VECTOR_CLONES
+void block_boxes(const double* x, const double* y, std::size_t n, std::size_t block,
+                 double* boxes) {
+  // why: GCC's vector types, lowered to the widest registers of each clone
+  using V = double __attribute__((vector_size(64)));
+  constexpr std::size_t kWidth = sizeof(V) / sizeof(double);
+  const auto load = [](V& v, const double* p) { std::memcpy(&v, p, sizeof(V)); };
+  // the extreme of the lanes, folding halves onto each other
+  const auto fold = [](V v, auto smaller) {
+    const auto keep = [&](const V& w) { v = smaller(w, v) ? w : v; };
+    // why: clang (the fuzz build, tests/fuzz) spells GCC's shuffle with constant lanes
+#if defined(__clang__)
+    keep(__builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
+    keep(__builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5));
+    keep(__builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6));
+#else
+    using Lanes = std::int64_t __attribute__((vector_size(64)));
+    keep(__builtin_shuffle(v, Lanes{4, 5, 6, 7, 0, 1, 2, 3}));
+    keep(__builtin_shuffle(v, Lanes{2, 3, 0, 1, 6, 7, 4, 5}));
+    keep(__builtin_shuffle(v, Lanes{1, 0, 3, 2, 5, 4, 7, 6}));
+#endif
+    return v[0];
+  };
+  const auto below = [](const V& a, const V& b) { return a < b; };
+  const auto above = [](const V& a, const V& b) { return a > b; };
+  for (std::size_t start = 0, b = 0; start < n; start += block, ++b) {
+    const std::size_t end = std::min(n, start + block);
+    double* box = boxes + 4 * b;
+    std::size_t k = start;
+    box[0] = box[1] = x[start];
+    box[2] = box[3] = y[start];
+    if (end - start >= kWidth) {
+      V xlo, ylo;
+      load(xlo, x + k);
+      load(ylo, y + k);
+      V xhi = xlo, yhi = ylo;
+      for (k += kWidth; k + kWidth <= end; k += kWidth) {
+        V vx, vy;
+        load(vx, x + k);
+        load(vy, y + k);
+        xlo = vx < xlo ? vx : xlo;
+        xhi = vx > xhi ? vx : xhi;
+        ylo = vy < ylo ? vy : ylo;
+        yhi = vy > yhi ? vy : yhi;
+      }
+      box[0] = fold(xlo, below);
+      box[1] = fold(xhi, above);
+      box[2] = fold(ylo, below);
+      box[3] = fold(yhi, above);
+    }
+    for (; k < end; ++k) {
+      box[0] = std::min(box[0], x[k]);
+      box[1] = std::max(box[1], x[k]);
+      box[2] = std::min(box[2], y[k]);
+      box[3] = std::max(box[3], y[k]);
+    }
+  }
+}
+
+}  // namespace
+
+namespace loops {
+
+PLUMETRACE_VECTOR_CLONES
+void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
+                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
+                     std::uint64_t key, double stddev, double gamma) {
+  const double dx = d.x, dy = d.y, dz = d.z, half_gamma = 0.5 * gamma;
+  for (std::int64_t i = 0; i < n; ++i) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * i)), a, b);
+    x[i] += dx + stddev * static_cast<double>(a);
+    y[i] += dy + stddev * static_cast<double>(b);
+    w[i] += half_gamma * h[i];
+    h[i] = 1.0 / w[i];
+  }
+  const std::int64_t half = n / 2;
+  double* __restrict z2 = z + half;
+  for (std::int64_t j = 0; j < half; ++j) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * j + 1)), a, b);
+    z[j] += dz + stddev * static_cast<double>(a);
+    z2[j] += dz + stddev * static_cast<double>(b);
+  }
+  if (n % 2 == 1) {
+    float a, b;
+    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(n)), a, b);
+    z[n - 1] += dz + stddev * static_cast<double>(a);
+  }
+}
+
+PLUMETRACE_VECTOR_CLONES
+void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
+             const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
+             Kernel kernel, double cut2, double* __restrict out) {
+  if (kernel == Kernel::kGaussian) {
+    kernel_loop<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
+  } else {
+    kernel_loop<Kernel::kPrinted>(u, x, y, z, h, m, scale, cut2, out);
+  }
+}
+
+}  // namespace loops
+
+PlumeParams plume_preset(PlumePreset preset) {
+  PlumeParams p;
+  p.preset = preset;
+  if (preset == PlumePreset::kPaperLiteral) {
+    // the plume as printed (paper sections 3.3-3.4; the lifetime is ours); the defaults are
+    // the default reading's
+    p.amount = 8.3e9;
+    p.sigma_p = 0.1;
+    p.release_shape = ReleaseShape::kDisc;
+    p.noise_mode = NoiseMode::kPerStep;
+    p.lifetime = Lifetime::kLeaveArena;
+    p.kernel = Kernel::kPrinted;
+    p.cutoff = INFINITY;
+  }
+  return p;
+}
+
+double walk_stddev(const PlumeParams& params, double dt) {
+  switch (params.noise_mode) {
+    case NoiseMode::kVelocity:
+      return params.sigma_p * dt;
+    case NoiseMode::kPerStep:
+      return params.sigma_p;
+    case NoiseMode::kWiener:
+      return params.sigma_p * std::sqrt(dt);
+  }
+  return 0.0;
+}
+
+double kernel_value(const PlumeParams& params, double w, double d2) {
+  const double scale = kernel_scale(params), cut2 = params.cutoff * params.cutoff;
+  const double h = 1.0 / w;
+  return params.kernel == Kernel::kGaussian ? kernel_at<Kernel::kGaussian>(scale, cut2, h, d2)
+                                            : kernel_at<Kernel::kPrinted>(scale, cut2, h, d2);
+}
+
+Plume::Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
+             std::uint64_t seed)
+    : params_(params),
+      source_(source),
+      dt_(dt),
+      removal_x_(removal_x),
+      walk_std_(walk_stddev(params, dt)),
+      rng_(seed) {
+  // why: reserve once so the step never allocates (a leave-arena plume may still grow past this)
+  const std::size_t reserve = static_cast<std::size_t>(params.capacity);
+  x_.reserve(reserve);
+  y_.reserve(reserve);
+  z_.reserve(reserve);
+  w_.reserve(reserve);
+  h_.reserve(reserve);
+}
+
+void Plume::step(const WindField& wind, double t) {
+  move(wind, t);
+  release();
+  update_bounds();
+}
+
+void Plume::update_bounds() {
+  const std::size_t n = x_.size();
+  bounds_.resize(4 * ((n + kBlock - 1) / kBlock));  // allocates only past the capacity
+  block_boxes(x_.data(), y_.data(), n, kBlock, bounds_.data());
+}
+
+void Plume::move(const WindField& wind, double t) {
+  const std::size_t n = x_.size();
+  // advection by the wind (paper eq. 2, first term): one displacement for a uniform wind,
+  // else each filament moved here by the wind at its position
+  Vec3 drift{0.0, 0.0, 0.0};
+  if (wind.uniform_in_space()) {
+    const Vec3 a = wind.velocity(source_.center, t);
+    drift = {a.x * dt_, a.y * dt_, a.z * dt_};
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 a = wind.velocity({x_[i], y_[i], z_[i]}, t);
+      x_[i] += a.x * dt_;
+      y_[i] += a.y * dt_;
+      z_[i] += a.z * dt_;
+    }
+  }
+  // random walk (second term) and width growth (eq. 3); the walk's normals come from a
+  // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
+  const std::uint64_t key = rng_.next_u64();
+  loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
+                         static_cast<std::int64_t>(n), drift, key, walk_std_, params_.gamma);
+  if (params_.lifetime == Lifetime::kLeaveArena) {
+    // stable compaction keeps the order, so sums stay reproducible
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (x_[i] > removal_x_) continue;
+      x_[kept] = x_[i];
+      y_[kept] = y_[i];
+      z_[kept] = z_[i];
+      w_[kept] = w_[i];
+      h_[kept] = h_[i];
+      ++kept;
+    }
+    x_.resize(kept);
+    y_.resize(kept);
+    z_.resize(kept);
+    w_.resize(kept);
+    h_.resize(kept);
+  }
+}
+
+void Plume::release() {
+  // why: deterministic release, the accumulated fraction is emitted whole (3 or 4 per step)
+  release_debt_ += params_.release_rate * dt_;
+  const auto count = static_cast<std::uint64_t>(std::floor(release_debt_ + 1e-9));
+  release_debt_ -= static_cast<double>(count);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const Vec3 p = release_position();
+    const auto capacity = static_cast<std::size_t>(params_.capacity);
+    if (params_.lifetime == Lifetime::kRing && x_.size() == capacity) {
+      store(oldest_, p, params_.initial_width);
+      oldest_ = (oldest_ + 1) % capacity;
+    } else {
+      x_.push_back(p.x);
+      y_.push_back(p.y);
+      z_.push_back(p.z);
+      w_.push_back(params_.initial_width);
+      h_.push_back(1.0 / params_.initial_width);
+    }
+    ++released_;
+  }
+}
+
+Vec3 Plume::release_position() {
+  // uniform in the ball or disc by rejection from the enclosing cube or square
+  const double r = source_.radius;
+  for (;;) {
+    const double dx = (2.0 * rng_.uniform() - 1.0) * r;
+    const double dy = (2.0 * rng_.uniform() - 1.0) * r;
+    const double dz =
+        params_.release_shape == ReleaseShape::kBall ? (2.0 * rng_.uniform() - 1.0) * r : 0.0;
+    if (dx * dx + dy * dy + dz * dz <= r * r) {
+      return {source_.center.x + dx, source_.center.y + dy, source_.center.z + dz};
+    }
+  }
+}
+
+void Plume::store(std::size_t i, const Vec3& p, double w) {
+  x_[i] = p.x;
+  y_[i] = p.y;
+  z_[i] = p.z;
+  w_[i] = w;
+  h_[i] = 1.0 / w;
+}
+
+double Plume::concentration(const Vec3& u) const { return sum_kernels(u, INFINITY); }
+
+bool Plume::reaches(const Vec3& u, double threshold) const {
+  return sum_kernels(u, threshold) >= threshold;
+}
+
+double Plume::sum_kernels(const Vec3& u, double stop_at) const {
+  // why: the sum is defined as kLanes partial sums, filament i going to sum i mod kLanes in
+  // index order, added pairwise at the end; so its terms are computed in vector loops and the
+  // result is the same bits at every vector width. Partial sums of non-negative terms never
+  // decrease and rounding is monotonic, so stopping once the total reaches `stop_at` answers
+  // "does it reach" exactly as the full sum would.
+  constexpr std::size_t kLanes = 8;
+  static_assert(kBlock % kLanes == 0);
+  double v[kBlock];
+  double acc[kLanes] = {};
+  const auto total = [&acc] {
+    return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+  };
+  const double cut2 = params_.cutoff * params_.cutoff;
+  const double scale = kernel_scale(params_);
+  const std::size_t n = x_.size();
+  for (std::size_t start = 0; start < n; start += kBlock) {
+    // why: rounding is monotonic, so no filament of a block is nearer than its box in (x, y);
+    // a box at or beyond the cut-off holds only filaments that add exactly 0
+    const double* box = bounds_.data() + 4 * (start / kBlock);
+    const double ex = std::max({box[0] - u.x, 0.0, u.x - box[1]});
+    const double ey = std::max({box[2] - u.y, 0.0, u.y - box[3]});
+    if (ex * ex + ey * ey >= cut2) continue;
+    const std::size_t m = std::min(kBlock, n - start);
+    loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
+                   static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    std::size_t k = 0;
+    for (; k + kLanes <= m; k += kLanes) {
+      for (std::size_t l = 0; l < kLanes; ++l) acc[l] += v[k + l];
+    }
+    for (; k < m; ++k) acc[k % kLanes] += v[k];
+    if (total() >= stop_at) break;
+  }
+  return total();
+}
+
+}  // namespace plumetrace

@@ -1,0 +1,1314 @@
+#include "plumetrace/experiment/store.hpp"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+
+namespace plumetrace {
+
+namespace {
+
+// the schema this version writes: schema 1 plus a checksum of the runs and of the points in meta;
+// stores of schema 1 are read without them and gain them when next written
+constexpr std::string_view kSchemaVersion = "2";
+constexpr std::string_view kLegacySchema = "1";
+// why: a merge holds the store for seconds; another process writing it waits that long
+constexpr int kBusyTimeoutMs = 60000;
+
+// whether an SQLite result code says the system failed (I/O), not the file's content
+bool is_io_failure(int code) {
+  switch (code & 0xff) {
+    case SQLITE_IOERR:
+    case SQLITE_FULL:
+    case SQLITE_CANTOPEN:
+    case SQLITE_READONLY:
+    case SQLITE_PERM:
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+    case SQLITE_NOMEM:
+    case SQLITE_NOLFS:
+    case SQLITE_PROTOCOL:
+    case SQLITE_AUTH:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// an SQLite failure on the store at `path`, with its cause in words: StoreIoError when the
+// system failed, StoreError when the file is at fault
+[[noreturn]] void fail(sqlite3* db, int code, const std::string& path) {
+  const int sys = sqlite3_system_errno(db);
+  const std::string os = sys ? std::string(" (") + std::strerror(sys) + ")" : "";
+  const std::string said = db ? sqlite3_errmsg(db) : sqlite3_errstr(code);
+  std::string cause;
+  switch (code & 0xff) {
+    case SQLITE_FULL:
+      cause = "write failed: the disk is full or the file size limit is reached" + os;
+      break;
+    case SQLITE_IOERR:
+      if (code == SQLITE_IOERR_READ || code == SQLITE_IOERR_SHORT_READ) {
+        cause = "read failed: " + said + os;
+      } else if (sys == ENOSPC || sys == EFBIG || sys == EDQUOT) {
+        cause = "write failed: the disk is full or the file size limit is reached" + os;
+      } else {
+        // why: SQLite does not always keep the errno of a failed write
+        cause = "write failed: " + said +
+                (sys ? os : " (a full disk, a file size limit or a failing device)");
+      }
+      break;
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      cause = "another process held the store locked for " + std::to_string(kBusyTimeoutMs / 1000) +
+              " s (a long merge or a stuck process?)";
+      break;
+    case SQLITE_READONLY:
+      cause = "cannot write it (a read-only file or folder): " + said;
+      break;
+    case SQLITE_CANTOPEN:
+    case SQLITE_PERM:
+      cause = "cannot open it" + os;
+      break;
+    case SQLITE_NOTADB:
+      throw StoreError("'" + path +
+                       "' is not a plumetrace results store (not an SQLite database, or its "
+                       "header is damaged)");
+    case SQLITE_CORRUPT:
+      throw StoreError("results store '" + path + "' is damaged: " + said);
+    default:
+      cause = said;
+  }
+  const std::string message = "results store '" + path + "': " + cause;
+  if (is_io_failure(code)) throw StoreIoError(message);
+  throw StoreError(message);
+}
+
+// a store whose content cannot be trusted
+[[noreturn]] void damaged(const std::string& path, const std::string& why) {
+  throw StoreError("results store '" + path + "' is damaged: " + why);
+}
+
+// whether `text` is valid UTF-8
+bool is_utf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = c < 0x80           ? 1
+                          : (c >> 5) == 0x6  ? 2
+                          : (c >> 4) == 0xe  ? 3
+                          : (c >> 3) == 0x1e ? 4
+                                             : 0;
+    if (n == 0 || i + n > text.size()) return false;
+    for (std::size_t k = 1; k < n; ++k) {
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return false;
+    }
+    i += n;
+  }
+  return true;
+}
+
+// a value read from a store, for a message: at most 40 bytes, control bytes (and the bytes of
+// text that is not UTF-8) as \xHH
+std::string shown(std::string_view text) {
+  const bool utf8 = is_utf8(text);
+  std::string out;
+  for (const char ch : text.substr(0, 40)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f || (c >= 0x80 && !utf8)) {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      out += hex;
+    } else {
+      out += ch;
+    }
+  }
+  return text.size() > 40 ? out + "..." : out;
+}
+
+// a prepared statement, finalized on scope exit
+class Statement {
+ public:
+  Statement(sqlite3* db, const char* sql, const std::string& path) : db_(db), path_(path) {
+    const int rc = sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr);
+    if (rc != SQLITE_OK) fail(db_, rc, path_);
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  void bind(int i, const std::string& v) {
+    sqlite3_bind_text(stmt_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+  }
+  void bind(int i, std::int64_t v) { sqlite3_bind_int64(stmt_, i, v); }
+  void bind(int i, double v) {
+    if (std::isnan(v)) {
+      sqlite3_bind_null(stmt_, i);
+    } else {
+      sqlite3_bind_double(stmt_, i, v);
+    }
+  }
+  // true while rows come
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc != SQLITE_DONE) fail(db_, rc, path_);
+    return false;
+  }
+  void reset() {
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+  int type(int col) const { return sqlite3_column_type(stmt_, col); }
+  std::string text(int col) const {
+    const auto* p = sqlite3_column_text(stmt_, col);
+    return p ? std::string(reinterpret_cast<const char*>(p),
+                           static_cast<std::size_t>(sqlite3_column_bytes(stmt_, col)))
+             : "";
+  }
+  std::int64_t integer(int col) const { return sqlite3_column_int64(stmt_, col); }
+  double real(int col) const {
+    return sqlite3_column_type(stmt_, col) == SQLITE_NULL ? NAN : sqlite3_column_double(stmt_, col);
+  }
+
+ private:
+  sqlite3* db_;
+  std::string path_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+void exec_sql(sqlite3* db, const std::string& path, const std::string& sql) {
+  char* err = nullptr;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err);
+  sqlite3_free(err);
+  if (rc != SQLITE_OK) fail(db, rc, path);
+}
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE IF NOT EXISTS points (
+  sweep TEXT NOT NULL, point INTEGER NOT NULL, axis_values TEXT NOT NULL,
+  config_hash TEXT NOT NULL, config TEXT NOT NULL,
+  PRIMARY KEY (sweep, point));
+CREATE TABLE IF NOT EXISTS runs (
+  sweep TEXT NOT NULL, point INTEGER NOT NULL, trial INTEGER NOT NULL,
+  seed TEXT NOT NULL, config_hash TEXT NOT NULL,
+  outcome TEXT NOT NULL, success INTEGER NOT NULL, time_s REAL NOT NULL,
+  d_t REAL NOT NULL, d_u REAL NOT NULL, overhead REAL, losses INTEGER NOT NULL,
+  odor_fraction REAL NOT NULL, steps INTEGER NOT NULL, wind_samples INTEGER NOT NULL,
+  PRIMARY KEY (sweep, point, trial));
+)sql";
+
+// the columns of each table of kSchema, in order
+const std::map<std::string, std::vector<std::string>>& schema_columns() {
+  static const std::map<std::string, std::vector<std::string>> columns{
+      {"meta", {"key", "value"}},
+      {"points", {"sweep", "point", "axis_values", "config_hash", "config"}},
+      {"runs",
+       {"sweep", "point", "trial", "seed", "config_hash", "outcome", "success", "time_s", "d_t",
+        "d_u", "overhead", "losses", "odor_fraction", "steps", "wind_samples"}}};
+  return columns;
+}
+
+sqlite3* open_db(const std::string& name, const std::string& path, int flags) {
+  sqlite3* db = nullptr;
+  const int rc = sqlite3_open_v2(name.c_str(), &db, flags, nullptr);
+  if (rc != SQLITE_OK) {
+    if (!db) throw StoreIoError("cannot open results store '" + path + "': out of memory");
+    try {
+      fail(db, rc, path);
+    } catch (...) {
+      sqlite3_close(db);
+      throw;
+    }
+  }
+  sqlite3_extended_result_codes(db, 1);
+  sqlite3_busy_timeout(db, kBusyTimeoutMs);
+  return db;
+}
+
+// "file:" URI of a path, for URI parameters
+std::string file_uri(const std::string& path) {
+  std::string uri = "file:";
+  for (const char c : std::filesystem::absolute(path).string()) {
+    if (c == '%' || c == '?' || c == '#') {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", static_cast<unsigned char>(c));
+      uri += hex;
+    } else {
+      uri += c;
+    }
+  }
+  return uri;
+}
+
+// whether the store has a write-ahead log with content (runs not yet in the file itself)
+bool has_journal(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path + "-wal", ec);
+  return !ec && size > 0;
+}
+
+// a transaction that reads one snapshot of the store, ended on scope exit
+class ReadTransaction {
+ public:
+  ReadTransaction(sqlite3* db, const std::string& path) : db_(db) {
+    exec_sql(db, path, "BEGIN;");
+    // why: the snapshot starts at the first read; take it now, so that failures show here
+    Statement(db, "SELECT count(*) FROM sqlite_master", path).step();
+  }
+  ~ReadTransaction() { sqlite3_exec(db_, "COMMIT;", nullptr, nullptr, nullptr); }
+  ReadTransaction(const ReadTransaction&) = delete;
+  ReadTransaction& operator=(const ReadTransaction&) = delete;
+
+ private:
+  sqlite3* db_;
+};
+
+// an existing store opened read-only, closed on scope exit; a store in a folder this user cannot
+// write (where SQLite cannot make its shared-memory file) is opened as immutable when no journal
+// holds runs that are not yet in the file
+class ReadOnlyStore {
+ public:
+  explicit ReadOnlyStore(const std::string& path) {
+    if (!std::filesystem::is_regular_file(path)) {
+      throw StoreError("cannot open results store '" + path + "': no such file");
+    }
+    db_ = open_db(path, path, SQLITE_OPEN_READONLY);
+    try {
+      ReadTransaction probe(db_, path);
+    } catch (const StoreIoError& e) {
+      sqlite3_close(db_);
+      db_ = nullptr;
+      if (has_journal(path)) {
+        throw StoreIoError(std::string(e.what()) + "; its journal '" + path +
+                           "-wal' holds runs not yet in the file, which SQLite cannot read "
+                           "without writing next to it: run this once as a user who may write "
+                           "the folder, or copy the store with its -wal file");
+      }
+      db_ = open_db(file_uri(path) + "?immutable=1", path, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI);
+    } catch (...) {
+      sqlite3_close(db_);
+      throw;
+    }
+  }
+  ~ReadOnlyStore() { sqlite3_close(db_); }
+  ReadOnlyStore(const ReadOnlyStore&) = delete;
+  ReadOnlyStore& operator=(const ReadOnlyStore&) = delete;
+
+  sqlite3* db() const { return db_; }
+
+ private:
+  sqlite3* db_ = nullptr;
+};
+
+// refuses a file whose size does not fit its pages, as an interrupted copy leaves it (SQLite
+// reads the missing bytes as zeros); called inside a read transaction, so that the page count is
+// that of the snapshot read
+void check_size(sqlite3* db, const std::string& path) {
+  Statement size_q(db, "PRAGMA page_size", path);
+  Statement count_q(db, "PRAGMA page_count", path);
+  const std::int64_t page_size = size_q.step() ? size_q.integer(0) : 0;
+  const std::int64_t pages = count_q.step() ? count_q.integer(0) : 0;
+  std::error_code ec;
+  const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(path, ec));
+  if (ec) throw StoreIoError("results store '" + path + "': cannot read its size: " + ec.message());
+  const std::string size_text = "the file has " + std::to_string(bytes) + " bytes, ";
+  if (page_size <= 0 || bytes % page_size != 0) {
+    damaged(path, size_text + "not a whole number of its " + std::to_string(page_size) +
+                      "-byte pages (truncated, e.g. by an interrupted copy?)");
+  }
+  // why: with a journal, pages may be in the journal and not yet in the file
+  if (!has_journal(path) && bytes != pages * page_size) {
+    damaged(path, size_text + "its " + std::to_string(pages) + " pages need " +
+                      std::to_string(pages * page_size) +
+                      " (truncated, e.g. by an interrupted copy?)");
+  }
+}
+
+enum class Layout {
+  kEmpty,       // no tables, or plumetrace's tables without a row
+  kPlumetrace,  // plumetrace's tables
+  kForeign,     // anything else
+};
+
+// what the database holds, read inside a transaction; `found` lists a foreign one's tables
+Layout layout_of(sqlite3* db, const std::string& path, std::string* found = nullptr) {
+  const auto& columns = schema_columns();
+  std::map<std::string, std::vector<std::string>> tables;
+  bool foreign = false;
+  {
+    Statement q(db, "SELECT type, name FROM sqlite_master", path);
+    while (q.step()) {
+      const std::string type = q.text(0), name = q.text(1);
+      if (type == "table") {
+        tables[name];
+        foreign = foreign || !columns.count(name);
+      } else {
+        foreign = foreign || type != "index" || name.rfind("sqlite_autoindex_", 0) != 0;
+      }
+    }
+  }
+  if (tables.empty() && !foreign) return Layout::kEmpty;
+  for (auto& [name, cols] : tables) {
+    std::string quoted;
+    for (const char c : name) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    Statement q(db, ("PRAGMA table_info(\"" + quoted + "\")").c_str(), path);
+    while (q.step()) cols.push_back(q.text(1));
+    const auto it = columns.find(name);
+    foreign = foreign || it == columns.end() || it->second != cols;
+  }
+  foreign = foreign || tables.size() != columns.size();
+  if (foreign) {
+    if (found) {
+      for (const auto& [name, cols] : tables) {
+        std::string list;
+        for (const auto& c : cols) list += (list.empty() ? "" : ", ") + c;
+        *found += (found->empty() ? "" : ", ") + shown(name) + "(" + shown(list) + ")";
+      }
+      if (found->empty()) *found = "views, triggers or indexes";
+    }
+    return Layout::kForeign;
+  }
+  for (const auto& [name, cols] : tables) {
+    Statement q(db, ("SELECT 1 FROM " + name + " LIMIT 1").c_str(), path);
+    if (q.step()) return Layout::kPlumetrace;
+  }
+  return Layout::kEmpty;
+}
+
+[[noreturn]] void not_a_store(const std::string& path, const std::string& found) {
+  throw StoreError("'" + path + "' is not a plumetrace results store (it holds " + found +
+                   "); plumetrace leaves it unchanged: choose another --store");
+}
+
+// a whole number in [lo, hi], or nothing
+std::optional<std::int64_t> whole_number(const std::string& text, std::int64_t lo,
+                                         std::int64_t hi) {
+  std::int64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || v < lo || v > hi) {
+    return std::nullopt;
+  }
+  return v;
+}
+
+// -0 as 0 and every NaN as one: SQLite keeps neither -0 (stored as the integer 0) nor a NaN's
+// bits (stored as NULL)
+double canonical(double v) {
+  if (v == 0.0) return 0.0;
+  if (std::isnan(v)) return std::numeric_limits<double>::quiet_NaN();
+  return v;
+}
+
+// a 64-bit hash of a row's fields (FNV-1a, length-prefixed fields, then a final mix), so that the
+// sum of a table's row hashes changes with any change, loss or addition of a row
+class RowHash {
+ public:
+  RowHash& add(std::string_view s) {
+    add(static_cast<std::uint64_t>(s.size()));
+    for (const char c : s) byte(static_cast<unsigned char>(c));
+    return *this;
+  }
+  RowHash& add(std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) byte(static_cast<unsigned char>(v >> (8 * i)));
+    return *this;
+  }
+  RowHash& add(std::int64_t v) { return add(static_cast<std::uint64_t>(v)); }
+  RowHash& add(double v) { return add(std::bit_cast<std::uint64_t>(canonical(v))); }
+  std::uint64_t value() const {
+    std::uint64_t z = h_ + 0x9e3779b97f4a7c15ULL;  // splitmix64's finalizer
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+
+ private:
+  void byte(unsigned char c) { h_ = (h_ ^ c) * 0x100000001b3ULL; }
+  std::uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+std::uint64_t hash_of(const RunRow& r) {
+  const RunResult& m = r.result;
+  return RowHash()
+      .add(r.sweep)
+      .add(static_cast<std::int64_t>(r.point))
+      .add(r.trial)
+      .add(m.seed)
+      .add(r.config_hash)
+      .add(outcome_name(m.outcome))
+      .add(m.time)
+      .add(m.d_t)
+      .add(m.d_u)
+      .add(m.overhead)
+      .add(static_cast<std::int64_t>(m.losses))
+      .add(m.odor_fraction)
+      .add(m.steps)
+      .add(m.wind_samples)
+      .value();
+}
+
+std::uint64_t hash_of(const StoredPoint& p) {
+  return RowHash()
+      .add(p.sweep)
+      .add(static_cast<std::int64_t>(p.point))
+      .add(p.axis_values)
+      .add(p.config_hash)
+      .add(p.config)
+      .value();
+}
+
+// a table's checksum: how many rows and the sum of their hashes (meta "check:runs",
+// "check:points": "COUNT HEX")
+struct Checksum {
+  std::int64_t count = 0;
+  std::uint64_t sum = 0;
+
+  void add(std::uint64_t hash) {
+    ++count;
+    sum += hash;
+  }
+  bool operator==(const Checksum&) const = default;
+  std::string text() const {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(sum));
+    return std::to_string(count) + " " + hex;
+  }
+};
+
+std::optional<Checksum> parse_checksum(const std::string& text) {
+  const auto space = text.find(' ');
+  if (space == std::string::npos || text.size() - space - 1 != 16) return std::nullopt;
+  const auto count = whole_number(text.substr(0, space), 0, std::numeric_limits<int64_t>::max());
+  Checksum c;
+  const char* hex = text.data() + space + 1;
+  const auto [ptr, ec] = std::from_chars(hex, hex + 16, c.sum, 16);
+  if (!count || ec != std::errc() || ptr != hex + 16) return std::nullopt;
+  c.count = *count;
+  return c;
+}
+
+std::optional<Outcome> outcome_from(const std::string& name) {
+  for (const Outcome o : {Outcome::kSuccess, Outcome::kWall, Outcome::kTimeout, Outcome::kGaveUp}) {
+    if (outcome_name(o) == name) return o;
+  }
+  return std::nullopt;
+}
+
+std::string key_text(const RunRow& r) {
+  return "sweep " + shown(r.sweep) + ", point " + std::to_string(r.point) + ", trial " +
+         std::to_string(r.trial);
+}
+
+const char* type_name(int type) {
+  switch (type) {
+    case SQLITE_INTEGER:
+      return "an integer";
+    case SQLITE_FLOAT:
+      return "a real number";
+    case SQLITE_TEXT:
+      return "text";
+    case SQLITE_BLOB:
+      return "a blob";
+    default:
+      return "NULL";
+  }
+}
+
+// reads the typed columns of one row of a table, naming the store, the row and the column of a
+// value that is not what the column holds
+class RowReader {
+ public:
+  RowReader(const Statement& q, const std::string& path, std::string row)
+      : q_(q), path_(path), row_(std::move(row)) {}
+
+  void name(std::string row) { row_ = std::move(row); }
+  [[noreturn]] void bad(int col, const std::string& column, const std::string& why) const {
+    damaged(path_, row_ + ": column " + column + " holds " + type_name(q_.type(col)) +
+                       (q_.type(col) == SQLITE_NULL ? "" : " '" + shown(q_.text(col)) + "'") +
+                       ", " + why);
+  }
+  std::string text(int col, const std::string& column) const {
+    if (q_.type(col) != SQLITE_TEXT) bad(col, column, "not text");
+    return q_.text(col);
+  }
+  std::int64_t integer(int col, const std::string& column, std::int64_t lo, std::int64_t hi) const {
+    if (q_.type(col) != SQLITE_INTEGER || q_.integer(col) < lo || q_.integer(col) > hi) {
+      bad(col, column,
+          "not a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+    }
+    return q_.integer(col);
+  }
+  double real(int col, const std::string& column, bool nullable) const {
+    const int type = q_.type(col);
+    if (type != SQLITE_FLOAT && !(nullable && type == SQLITE_NULL)) {
+      bad(col, column, nullable ? "not a number or NULL" : "not a number");
+    }
+    return q_.real(col);
+  }
+
+ private:
+  const Statement& q_;
+  const std::string& path_;
+  std::string row_;
+};
+
+constexpr const char* kRunColumns =
+    "sweep, point, trial, seed, config_hash, outcome, success, time_s, d_t, d_u, overhead, "
+    "losses, odor_fraction, steps, wind_samples, rowid";
+
+// the run at the statement's cursor, selected with kRunColumns, every value checked
+RunRow row_at(const Statement& q, const std::string& path) {
+  RowReader in(q, path, "row " + std::to_string(q.integer(15)) + " of table runs");
+  RunRow r;
+  r.sweep = in.text(0, "sweep");
+  r.point = static_cast<int>(in.integer(1, "point", 0, INT_MAX));
+  r.trial = static_cast<std::uint64_t>(in.integer(2, "trial", 0, INT64_MAX));
+  in.name("run (" + key_text(r) + ")");
+  r.config_hash = in.text(4, "config_hash");
+  RunResult& m = r.result;
+  const std::string seed = in.text(3, "seed");
+  const auto [ptr, ec] = std::from_chars(seed.data(), seed.data() + seed.size(), m.seed);
+  if (seed.empty() || ec != std::errc() || ptr != seed.data() + seed.size()) {
+    in.bad(3, "seed", "not a whole number from 0 to 18446744073709551615");
+  }
+  m.trial = r.trial;
+  const auto outcome = outcome_from(in.text(5, "outcome"));
+  if (!outcome) in.bad(5, "outcome", "not one of success, wall, timeout, gave_up");
+  m.outcome = *outcome;
+  if (in.integer(6, "success", 0, 1) != (m.outcome == Outcome::kSuccess ? 1 : 0)) {
+    in.bad(6, "success", "which contradicts its outcome " + std::string(outcome_name(m.outcome)));
+  }
+  m.time = in.real(7, "time_s", false);
+  m.d_t = in.real(8, "d_t", false);
+  m.d_u = in.real(9, "d_u", false);
+  m.overhead = in.real(10, "overhead", true);
+  m.losses = static_cast<int>(in.integer(11, "losses", 0, INT_MAX));
+  m.odor_fraction = in.real(12, "odor_fraction", false);
+  m.steps = in.integer(13, "steps", 0, INT64_MAX);
+  m.wind_samples = in.integer(14, "wind_samples", 0, INT64_MAX);
+  return r;
+}
+
+// binds a run to the parameters of kInsertRun
+constexpr const char* kInsertRun =
+    "INSERT INTO runs (sweep, point, trial, seed, config_hash, outcome, success, time_s, d_t, d_u, "
+    "overhead, losses, odor_fraction, steps, wind_samples) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+
+void bind_run(Statement& put, const RunRow& r) {
+  const RunResult& m = r.result;
+  put.bind(1, r.sweep);
+  put.bind(2, static_cast<std::int64_t>(r.point));
+  put.bind(3, static_cast<std::int64_t>(r.trial));
+  put.bind(4, std::to_string(m.seed));  // why: TEXT keeps the full unsigned 64-bit seed
+  put.bind(5, r.config_hash);
+  put.bind(6, std::string(outcome_name(m.outcome)));
+  put.bind(7, static_cast<std::int64_t>(m.outcome == Outcome::kSuccess));
+  put.bind(8, m.time);
+  put.bind(9, m.d_t);
+  put.bind(10, m.d_u);
+  put.bind(11, m.overhead);
+  put.bind(12, static_cast<std::int64_t>(m.losses));
+  put.bind(13, m.odor_fraction);
+  put.bind(14, m.steps);
+  put.bind(15, m.wind_samples);
+}
+
+// the same values in every stored column, as the store keeps them (-0 is 0, NaN is NULL)
+bool same_run(const RunRow& a, const RunRow& b) {
+  const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(canonical(v)); };
+  const RunResult& x = a.result;
+  const RunResult& y = b.result;
+  return a.config_hash == b.config_hash && x.seed == y.seed && x.outcome == y.outcome &&
+         bits(x.time) == bits(y.time) && bits(x.d_t) == bits(y.d_t) && bits(x.d_u) == bits(y.d_u) &&
+         bits(x.overhead) == bits(y.overhead) && x.losses == y.losses &&
+         bits(x.odor_fraction) == bits(y.odor_fraction) && x.steps == y.steps &&
+         x.wind_samples == y.wind_samples;
+}
+
+std::string meta_value(sqlite3* db, const std::string& path, const std::string& key) {
+  Statement q(db, "SELECT value FROM meta WHERE key = ?", path);
+  q.bind(1, key);
+  return q.step() ? q.text(0) : "";
+}
+
+// the runs per point recorded under meta key `key` ("runs:NAME")
+int runs_value(const std::string& path, const std::string& key, const std::string& text) {
+  const auto v = whole_number(text, 0, INT_MAX);
+  if (!v) {
+    damaged(path, "meta key '" + shown(key) + "' holds '" + shown(text) +
+                      "', not a whole number of runs");
+  }
+  return static_cast<int>(*v);
+}
+
+// the meta rows, checked; `checks` gets the checksums (none in a store of schema 1)
+std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& path,
+                                             std::optional<Checksum> checks[2]) {
+  std::map<std::string, std::string> meta;
+  {
+    Statement q(db, "SELECT key, value, rowid FROM meta", path);
+    while (q.step()) {
+      const RowReader in(q, path, "row " + std::to_string(q.integer(2)) + " of table meta");
+      const std::string key = in.text(0, "key");
+      meta[key] = in.text(1, "value");
+    }
+  }
+  const auto need = [&](const std::string& key) -> const std::string& {
+    if (meta[key].empty()) damaged(path, "it has no '" + key + "' in its meta table");
+    return meta[key];
+  };
+  const std::string& schema = need("schema");
+  if (schema != kSchemaVersion && schema != kLegacySchema) {
+    damaged(path, "its schema is '" + shown(schema) + "'; this plumetrace reads schema " +
+                      std::string(kSchemaVersion) + " (and " + std::string(kLegacySchema) + ")");
+  }
+  if (!nlohmann::json::accept(need("definition"))) {
+    damaged(path, "its definition (meta key 'definition') is not JSON");
+  }
+  need("version");
+  for (const auto& [key, value] : meta) {
+    if (key.rfind("runs:", 0) == 0) runs_value(path, key, value);
+  }
+  if (meta.count("shard")) {
+    int i = 0, n = 0;
+    char extra = 0;
+    if (std::sscanf(meta["shard"].c_str(), "%d/%d%c", &i, &n, &extra) != 2 || i < 1 || n < 1 ||
+        i > n) {
+      damaged(path,
+              "meta key 'shard' holds '" + shown(meta["shard"]) + "', not i/n with 1 <= i <= n");
+    }
+  }
+  const char* keys[2] = {"check:runs", "check:points"};
+  for (int t = 0; t < 2; ++t) {
+    checks[t].reset();
+    if (schema == kLegacySchema && !meta.count(keys[t])) continue;
+    checks[t] = parse_checksum(need(keys[t]));
+    if (!checks[t]) {
+      damaged(path, "meta key '" + std::string(keys[t]) + "' holds '" + shown(meta[keys[t]]) +
+                        "', not a checksum (COUNT HEX)");
+    }
+  }
+  return meta;
+}
+
+// reads and checks everything a store holds (inside a read transaction): the file's size, its
+// tables, every value, each run against its point, and the checksums
+StoreContents load(sqlite3* db, const std::string& path) {
+  check_size(db, path);
+  std::string found;
+  switch (layout_of(db, path, &found)) {
+    case Layout::kEmpty:
+      throw StoreError("'" + path + "' is not a plumetrace results store (it is empty)");
+    case Layout::kForeign:
+      not_a_store(path, found);
+    case Layout::kPlumetrace:
+      break;
+  }
+  std::optional<Checksum> checks[2];
+  const auto meta = read_meta(db, path, checks);
+  StoreContents c;
+  c.info.definition = meta.at("definition");
+  c.info.version = meta.at("version");
+  c.info.shard = meta.count("shard") ? meta.at("shard") : "";
+
+  // the points
+  Checksum points_sum;
+  std::map<std::pair<std::string, int>, std::string> hash_of_point;
+  {
+    Statement q(db,
+                "SELECT sweep, point, axis_values, config_hash, config, rowid FROM points "
+                "ORDER BY sweep, point",
+                path);
+    while (q.step()) {
+      const RowReader in(q, path, "row " + std::to_string(q.integer(5)) + " of table points");
+      StoredPoint p;
+      p.sweep = in.text(0, "sweep");
+      p.point = static_cast<int>(in.integer(1, "point", 0, INT_MAX));
+      p.axis_values = in.text(2, "axis_values");
+      p.config_hash = in.text(3, "config_hash");
+      p.config = in.text(4, "config");
+      if (!hash_of_point.emplace(std::pair{p.sweep, p.point}, p.config_hash).second) {
+        damaged(path, "it holds sweep " + shown(p.sweep) + ", point " + std::to_string(p.point) +
+                          " twice in table points");
+      }
+      points_sum.add(hash_of(p));
+      ++c.info.points[p.sweep];
+      c.points.push_back(std::move(p));
+    }
+  }
+
+  // the runs, each against its point
+  Checksum runs_sum;
+  {
+    Statement q(
+        db,
+        (std::string("SELECT ") + kRunColumns + " FROM runs ORDER BY sweep, point, trial").c_str(),
+        path);
+    while (q.step()) {
+      RunRow r = row_at(q, path);
+      if (!c.rows.empty()) {
+        const RunRow& last = c.rows.back();
+        if (std::tie(last.sweep, last.point, last.trial) >= std::tie(r.sweep, r.point, r.trial)) {
+          damaged(path, "it holds run (" + key_text(r) + ") twice or out of order");
+        }
+      }
+      const auto point = hash_of_point.find({r.sweep, r.point});
+      if (point == hash_of_point.end()) {
+        damaged(path, "run (" + key_text(r) + ") has no point in table points");
+      }
+      if (point->second != r.config_hash) {
+        damaged(path, "run (" + key_text(r) + "): column config_hash holds '" +
+                          shown(r.config_hash) + "', but its point's is '" + shown(point->second) +
+                          "'");
+      }
+      runs_sum.add(hash_of(r));
+      c.rows.push_back(std::move(r));
+    }
+  }
+  const auto compare = [&](const std::optional<Checksum>& want, const Checksum& got,
+                           const std::string& table) {
+    if (!want || *want == got) return;
+    if (want->count != got.count) {
+      damaged(path, "table " + table + " holds " + std::to_string(got.count) +
+                        " rows, its checksum says " + std::to_string(want->count) +
+                        " (rows lost or added outside plumetrace)");
+    }
+    damaged(path, "the values in table " + table +
+                      " do not match their checksum (changed outside plumetrace: a damaged "
+                      "file or an edit)");
+  };
+  compare(checks[0], runs_sum, "runs");
+  compare(checks[1], points_sum, "points");
+
+  // the runs per point asked of each sweep, and how many of those are stored
+  for (const auto& [sweep, count] : c.info.points) {
+    const auto it = meta.find("runs:" + sweep);
+    int runs = 0;
+    if (it != meta.end()) {
+      runs = runs_value(path, it->first, it->second);
+    } else {
+      // a store from before runs were recorded: as many as its largest trial says
+      for (const auto& r : c.rows) {
+        if (r.sweep == sweep) runs = std::max(runs, static_cast<int>(r.trial + 1));
+      }
+    }
+    c.info.runs[sweep] = runs;
+    c.info.stored[sweep] = 0;
+  }
+  for (const auto& r : c.rows) {
+    const auto it = c.info.runs.find(r.sweep);
+    if (it != c.info.runs.end() && r.trial < static_cast<std::uint64_t>(it->second)) {
+      ++c.info.stored[r.sweep];
+    }
+  }
+  return c;
+}
+
+// the checksums of what a store holds
+std::pair<Checksum, Checksum> checksums_of(const StoreContents& c) {
+  std::pair<Checksum, Checksum> sums;
+  for (const auto& r : c.rows) sums.first.add(hash_of(r));
+  for (const auto& p : c.points) sums.second.add(hash_of(p));
+  return sums;
+}
+
+void put_meta(sqlite3* db, const std::string& path, const std::string& key,
+              const std::string& value) {
+  Statement put(db, "INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)", path);
+  put.bind(1, key);
+  put.bind(2, value);
+  put.step();
+}
+
+// a table's checksum as a write transaction finds it
+Checksum stored_checksum(sqlite3* db, const std::string& path, const std::string& key) {
+  const std::string text = meta_value(db, path, key);
+  const auto sum = parse_checksum(text);
+  if (!sum) damaged(path, "meta key '" + key + "' holds '" + shown(text) + "', not a checksum");
+  return *sum;
+}
+
+// adds runs inside a write transaction: a run the store holds already is compared instead, and
+// the runs' checksum is kept with them
+// Inserts the points not stored yet and keeps the "check:points" checksum with them; finish()
+// writes the checksum, inside the caller's transaction.
+class PointWriter {
+ public:
+  PointWriter(sqlite3* db, const std::string& path)
+      : db_(db),
+        path_(path),
+        put_(db,
+             "INSERT OR IGNORE INTO points (sweep, point, axis_values, config_hash, config) "
+             "VALUES (?, ?, ?, ?, ?)",
+             path),
+        sum_(stored_checksum(db, path, "check:points")) {}
+
+  void put(const StoredPoint& point) {
+    put_.bind(1, point.sweep);
+    put_.bind(2, static_cast<std::int64_t>(point.point));
+    put_.bind(3, point.axis_values);
+    put_.bind(4, point.config_hash);
+    put_.bind(5, point.config);
+    put_.step();
+    put_.reset();
+    if (sqlite3_changes(db_) > 0) sum_.add(hash_of(point));
+  }
+
+  void finish() { put_meta(db_, path_, "check:points", sum_.text()); }
+
+ private:
+  sqlite3* db_;
+  const std::string& path_;
+  Statement put_;
+  Checksum sum_;
+};
+
+class RunWriter {
+ public:
+  enum class Added { kNew, kSame, kDifferent };
+
+  RunWriter(sqlite3* db, const std::string& path)
+      : db_(db),
+        path_(path),
+        held_(db,
+              (std::string("SELECT ") + kRunColumns +
+               " FROM runs WHERE sweep = ? AND point = ? AND trial = ?")
+                  .c_str(),
+              path),
+        put_(db, kInsertRun, path),
+        sum_(stored_checksum(db, path, "check:runs")) {}
+
+  Added add(const RunRow& r) {
+    held_.bind(1, r.sweep);
+    held_.bind(2, static_cast<std::int64_t>(r.point));
+    held_.bind(3, static_cast<std::int64_t>(r.trial));
+    const bool exists = held_.step();
+    const bool same = exists && same_run(row_at(held_, path_), r);
+    held_.reset();
+    if (exists) return same ? Added::kSame : Added::kDifferent;
+    bind_run(put_, r);
+    put_.step();
+    put_.reset();
+    sum_.add(hash_of(r));
+    return Added::kNew;
+  }
+  // writes the checksum (before the transaction commits)
+  void finish() { put_meta(db_, path_, "check:runs", sum_.text()); }
+
+ private:
+  sqlite3* db_;
+  const std::string& path_;
+  Statement held_;
+  Statement put_;
+  Checksum sum_;
+};
+
+// switches the store to WAL journaling unless it is already; why: the switch needs the file to
+// itself and SQLite does not wait for that, so when other processes open the same new store at
+// once it is retried until one of them has switched it
+void use_wal(sqlite3* db, const std::string& path) {
+  const auto mode = [&](const char* sql, int& rc) {
+    sqlite3_stmt* q = nullptr;
+    rc = sqlite3_prepare_v2(db, sql, -1, &q, nullptr);
+    if (rc == SQLITE_OK) rc = sqlite3_step(q);
+    std::string text;
+    if (rc == SQLITE_ROW) {
+      const auto* p = sqlite3_column_text(q, 0);
+      text = p ? reinterpret_cast<const char*>(p) : "";
+      rc = SQLITE_OK;
+    }
+    sqlite3_finalize(q);
+    return text;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    int rc = SQLITE_OK;
+    if (mode("PRAGMA journal_mode", rc) == "wal" && rc == SQLITE_OK) return;
+    if (rc == SQLITE_OK && mode("PRAGMA journal_mode=WAL", rc) == "wal" && rc == SQLITE_OK) return;
+    const bool waited_enough =
+        std::chrono::steady_clock::now() - start > std::chrono::milliseconds(kBusyTimeoutMs);
+    if (rc != SQLITE_OK && ((rc & 0xff) != SQLITE_BUSY || waited_enough)) fail(db, rc, path);
+    if (waited_enough) {
+      throw StoreIoError("results store '" + path + "': cannot switch it to WAL journaling");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+}  // namespace
+
+Store::Store(const std::string& path, const std::string& definition, std::string_view version,
+             bool fresh)
+    : path_(path), definition_(definition) {
+  db_ = open_db(path, path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  try {
+    if (sqlite3_db_readonly(db_, "main") == 1) {
+      throw StoreIoError("results store '" + path + "': cannot write it (a read-only file)");
+    }
+    const std::string discard = "; use --fresh to discard its runs, or another --store";
+    // what the file holds, read before anything is written to it
+    {
+      ReadTransaction read(db_, path_);
+      check_size(db_, path_);  // why: refused even with --fresh, as SQLite cannot be trusted on it
+      std::string found;
+      const Layout layout = layout_of(db_, path_, &found);
+      if (layout == Layout::kForeign) not_a_store(path_, found);
+      if (layout == Layout::kPlumetrace && !fresh) {
+        StoreContents held;
+        try {
+          held = load(db_, path_);
+        } catch (const StoreIoError&) {
+          throw;
+        } catch (const StoreError& e) {
+          throw StoreError(e.what() + discard);
+        }
+        if (held.info.definition != definition) {
+          throw StoreError("results store '" + path +
+                           "' holds runs of a different sweep definition" + discard);
+        }
+        if (held.info.version != version) {
+          throw StoreError("results store '" + path + "' was written by plumetrace " +
+                           held.info.version + ", this is " + std::string(version) + discard);
+        }
+      }
+    }
+    // why: WAL with synchronous=NORMAL keeps every committed batch through a kill -9, and lets
+    // readers read while another process writes
+    use_wal(db_, path_);
+    exec("PRAGMA synchronous=NORMAL;");
+    in_transaction([&] {
+      // again under the write lock: another process may have made the store meanwhile
+      std::string found;
+      const Layout layout = layout_of(db_, path_, &found);
+      if (layout == Layout::kForeign) not_a_store(path_, found);
+      if (layout == Layout::kPlumetrace && !fresh) {
+        if (meta("definition") != definition || meta("version") != version) {
+          throw StoreError("results store '" + path +
+                           "' was given another definition or version by another process" +
+                           discard);
+        }
+        if (meta("schema") == kLegacySchema) {
+          // a store of schema 1, checked above: its checksums from now on
+          const auto [runs, points] = checksums_of(load(db_, path_));
+          put_meta(db_, path_, "check:runs", runs.text());
+          put_meta(db_, path_, "check:points", points.text());
+          put_meta(db_, path_, "schema", std::string(kSchemaVersion));
+        }
+        return;
+      }
+      if (layout == Layout::kPlumetrace) {
+        exec("DELETE FROM runs; DELETE FROM points; DELETE FROM meta;");
+      } else {
+        exec(kSchema);
+      }
+      for (const auto& [k, v] : {std::pair<std::string, std::string>{"definition", definition},
+                                 {"version", std::string(version)},
+                                 {"schema", std::string(kSchemaVersion)},
+                                 {"check:runs", Checksum{}.text()},
+                                 {"check:points", Checksum{}.text()}}) {
+        put_meta(db_, path_, k, v);
+      }
+    });
+  } catch (...) {
+    sqlite3_close(db_);
+    throw;
+  }
+}
+
+Store::~Store() { sqlite3_close(db_); }
+
+void Store::exec(const std::string& sql) const { exec_sql(db_, path_, sql); }
+
+void Store::in_transaction(const std::function<void()>& work) {
+  // why: IMMEDIATE takes the write lock first (waiting for another process's), where a read
+  // turned write would fail at once with "database is locked"
+  exec("BEGIN IMMEDIATE;");
+  try {
+    work();
+    exec("COMMIT;");
+  } catch (...) {
+    // why: SQLite has rolled back already after some errors (a full disk); a failed rollback
+    // must not hide the error that caused it
+    if (!sqlite3_get_autocommit(db_)) sqlite3_exec(db_, "ROLLBACK;", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::string Store::meta(const std::string& key) const { return meta_value(db_, path_, key); }
+
+std::string Store::definition() const { return meta("definition"); }
+
+void Store::check_definition() const {
+  if (meta("definition") != definition_) {
+    throw StoreError("results store '" + path_ +
+                     "' was emptied for another definition by another process (--fresh?) while "
+                     "this one wrote it; nothing more is written to it");
+  }
+}
+
+void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
+  in_transaction([&] {
+    check_definition();
+    PointWriter writer(db_, path_);
+    for (const auto& sweep : sweeps) {
+      for (const auto& p : sweep.points) {
+        StoredPoint point{sweep.def.name, p.index, "", p.config_hash, scenario_to_toml(p.scenario)};
+        for (std::size_t a = 0; a < p.values.size(); ++a) {
+          point.axis_values +=
+              (a ? ", " : "") + sweep.def.axes[a].key + " = " + format_value(p.values[a]);
+        }
+        writer.put(point);
+      }
+    }
+    writer.finish();
+  });
+}
+
+void Store::insert(const std::vector<RunRow>& rows) {
+  in_transaction([&] {
+    check_definition();
+    RunWriter writer(db_, path_);
+    for (const auto& r : rows) {
+      if (writer.add(r) == RunWriter::Added::kDifferent) {
+        throw StoreError("results store '" + path_ + "' already holds " + key_text(r) +
+                         " with other results than the ones computed now (written by another "
+                         "build of plumetrace?)");
+      }
+    }
+    writer.finish();
+  });
+}
+
+void Store::put_plan(const std::vector<std::pair<std::string, int>>& runs,
+                     const std::string& shard) {
+  in_transaction([&] {
+    check_definition();
+    write_plan(runs, shard);
+  });
+}
+
+void Store::write_plan(const std::vector<std::pair<std::string, int>>& runs,
+                       const std::string& shard) {
+  for (const auto& [sweep, count] : runs) {
+    const std::string key = "runs:" + sweep;
+    const std::string old = meta(key);
+    put_meta(db_, path_, key,
+             std::to_string(std::max(count, old.empty() ? 0 : runs_value(path_, key, old))));
+  }
+  if (shard.empty()) {
+    exec("DELETE FROM meta WHERE key = 'shard';");
+  } else {
+    put_meta(db_, path_, "shard", shard);
+  }
+}
+
+StoreInfo Store::info() const {
+  const ReadTransaction read(db_, path_);
+  return load(db_, path_).info;
+}
+
+std::set<RunKey> Store::keys() const {
+  const ReadTransaction read(db_, path_);
+  Statement q(db_, "SELECT sweep, point, trial FROM runs", path_);
+  std::set<RunKey> keys;
+  while (q.step()) {
+    keys.emplace(q.text(0), static_cast<int>(q.integer(1)),
+                 static_cast<std::uint64_t>(q.integer(2)));
+  }
+  return keys;
+}
+
+std::vector<RunRow> Store::rows() const {
+  const ReadTransaction read(db_, path_);
+  return load(db_, path_).rows;
+}
+
+StoreContents read_store(const std::string& path) {
+  const ReadOnlyStore store(path);
+  const ReadTransaction read(store.db(), path);
+  return load(store.db(), path);
+}
+
+StoreInfo read_store_info(const std::string& path) { return read_store(path).info; }
+
+std::vector<RunRow> read_store_rows(const std::string& path, std::string* definition) {
+  StoreContents c = read_store(path);
+  if (definition) *definition = c.info.definition;
+  return std::move(c.rows);
+}
+
+namespace {
+
+// whether a file is a store to be made: empty, or a database without a plumetrace row (as a
+// merge or sweep killed before its first commit leaves it)
+bool is_blank(const std::string& path) {
+  if (std::filesystem::file_size(path) == 0) return true;
+  const ReadOnlyStore store(path);
+  const ReadTransaction read(store.db(), path);
+  return layout_of(store.db(), path) == Layout::kEmpty;
+}
+
+}  // namespace
+
+MergeReport Store::absorb(const std::vector<std::string>& parts,
+                          const std::vector<StoreContents>& contents,
+                          const std::vector<std::pair<std::string, int>>& runs) {
+  MergeReport report;
+  in_transaction([&] {
+    check_definition();
+    {
+      PointWriter points(db_, path_);
+      for (const auto& part : contents) {
+        for (const auto& p : part.points) points.put(p);
+      }
+      points.finish();
+    }
+    // which part each merged run came from, to name both files of an overlap
+    std::map<RunKey, std::size_t> origin;
+    RunWriter writer(db_, path_);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      std::int64_t overlaps = 0;
+      std::string first_overlap;
+      std::size_t other = 0;
+      for (const RunRow& r : contents[k].rows) {
+        const auto [it, added] = origin.try_emplace({r.sweep, r.point, r.trial}, k);
+        if (!added) {
+          if (overlaps++ == 0) {
+            first_overlap = key_text(r);
+            other = it->second;
+          }
+          continue;
+        }
+        switch (writer.add(r)) {
+          case RunWriter::Added::kNew:
+            ++report.added;
+            break;
+          case RunWriter::Added::kSame:
+            ++report.already;
+            break;
+          case RunWriter::Added::kDifferent:
+            throw StoreError("merge: '" + path_ + "' already holds " + key_text(r) +
+                             " with other results than '" + parts[k] +
+                             "'; merge into a new --store");
+        }
+      }
+      if (overlaps > 0) {
+        throw StoreError("merge: '" + parts[k] + "' and '" + parts[other] + "' both hold " +
+                         std::to_string(overlaps) + " run(s), e.g. " + first_overlap +
+                         "; parts must be disjoint (each --shard i/n of one n, given once)");
+      }
+    }
+    writer.finish();
+    write_plan(runs, "");
+  });
+  return report;
+}
+
+MergeReport merge_stores(const std::vector<std::string>& parts, const std::string& out) {
+  if (parts.empty()) throw StoreError("merge: no part store given");
+  std::vector<StoreContents> contents;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::string& p = parts[k];
+    contents.push_back(read_store(p));
+    for (std::size_t j = 0; j < k; ++j) {
+      if (std::filesystem::equivalent(parts[j], p)) {
+        throw StoreError("merge: '" + p + "' is given twice (also as '" + parts[j] + "')");
+      }
+    }
+    const StoreInfo& first = contents.front().info;
+    const StoreInfo& info = contents.back().info;
+    if (info.version != version()) {
+      throw StoreError("merge: '" + p + "' was written by plumetrace " + info.version +
+                       ", this is " + std::string(version()) +
+                       "; merge with the version that computed the parts");
+    }
+    if (info.definition != first.definition) {
+      throw StoreError("merge: '" + p + "' holds runs of another sweep definition than '" +
+                       parts.front() + "' (another sweep file, seed or --set)");
+    }
+  }
+  const std::string& definition = contents.front().info.definition;
+  // an empty file at `out` (a merge killed early) is a new store, removed again on failure
+  bool existed = false;
+  if (std::filesystem::exists(out)) {
+    for (const auto& p : parts) {
+      if (std::filesystem::equivalent(out, p)) {
+        throw StoreError("merge: the --store '" + out + "' is also given as a part");
+      }
+    }
+    existed = !is_blank(out);
+    if (existed) {
+      const StoreInfo held = read_store_info(out);
+      if (held.definition != definition || held.version != version()) {
+        throw StoreError("merge: the --store '" + out +
+                         "' holds runs of another sweep definition or version than the parts; "
+                         "merge into a new --store");
+      }
+    }
+  }
+
+  // the runs per point asked of each sweep: the most any part was asked for
+  std::map<std::string, int> most;
+  for (const auto& c : contents) {
+    for (const auto& [sweep, runs] : c.info.runs) most[sweep] = std::max(most[sweep], runs);
+  }
+  MergeReport report;
+  try {
+    Store store(out, definition, version(), false);
+    report = store.absorb(parts, contents, {most.begin(), most.end()});
+    const StoreInfo merged = store.info();
+    for (const auto& [sweep, points] : merged.points) {
+      const std::int64_t expected = points * merged.runs.at(sweep);
+      const std::int64_t present = merged.stored.at(sweep);
+      if (present < expected) report.gaps.push_back({sweep, expected, present});
+    }
+    report.total = static_cast<std::int64_t>(store.keys().size());
+  } catch (...) {
+    if (!existed) {
+      for (const char* suffix : {"", "-wal", "-shm"}) {
+        std::error_code ignored;
+        std::filesystem::remove(out + suffix, ignored);
+      }
+    }
+    throw;
+  }
+
+  // shards of one count that no part holds, when runs are missing
+  if (report.gaps.empty()) return report;
+  int count = 0;
+  std::set<int> given;
+  for (const auto& c : contents) {
+    int i = 0, n = 0;
+    if (std::sscanf(c.info.shard.c_str(), "%d/%d", &i, &n) != 2 || (count && n != count)) {
+      count = -1;
+      break;
+    }
+    count = n;
+    given.insert(i);
+  }
+  for (int i = 1; i <= count; ++i) {
+    if (!given.count(i)) {
+      report.missing_shards.push_back(std::to_string(i) + "/" + std::to_string(count));
+    }
+  }
+  return report;
+}
+
+}  // namespace plumetrace

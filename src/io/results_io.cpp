@@ -1,0 +1,186 @@
+#include "plumetrace/io/results_io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/io/json_util.hpp"
+
+namespace plumetrace {
+
+using detail::csv_text;
+using detail::number_or_null;
+using detail::result_json;
+using detail::stats_json;
+using detail::value_to_json;
+using nlohmann::json;
+
+std::string result_to_json(const RunResult& result, const RunInfo& info) {
+  return result_json(result, info).dump();
+}
+
+std::string probe_to_json(const std::vector<ProbeResult>& results) {
+  json points = json::array();
+  for (const auto& r : results) {
+    points.push_back({{"x", r.point.x},
+                      {"y", r.point.y},
+                      {"z", r.point.z},
+                      {"detect_fraction", r.detect_fraction},
+                      {"mean_concentration", r.mean_concentration},
+                      {"samples", r.samples}});
+  }
+  return json{{"points", points}}.dump();
+}
+
+namespace {
+
+std::vector<std::string> axis_keys(const std::vector<ExpandedSweep>& sweeps) {
+  std::vector<std::string> keys;
+  for (const auto& s : sweeps) {
+    for (const auto& a : s.def.axes) {
+      if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) keys.push_back(a.key);
+    }
+  }
+  return keys;
+}
+
+const ExpandedSweep* find_sweep(const std::vector<ExpandedSweep>& sweeps, const std::string& name) {
+  for (const auto& s : sweeps) {
+    if (s.def.name == name) return &s;
+  }
+  return nullptr;
+}
+
+// the first columns' names: sweep, point, then one per axis key
+std::string axis_header(const std::vector<std::string>& keys) {
+  std::string header = "sweep,point";
+  for (const auto& k : keys) header += ',' + csv_text(k);
+  return header;
+}
+
+// the axis columns of one point: its value under each key, empty where the sweep lacks the key
+std::string axis_cells(const ExpandedSweep& sweep, int point,
+                       const std::vector<std::string>& keys) {
+  std::string cells;
+  for (const auto& key : keys) {
+    cells += ',';
+    for (std::size_t a = 0; a < sweep.def.axes.size(); ++a) {
+      if (sweep.def.axes[a].key != key) continue;
+      const ConfigValue& v = sweep.points[static_cast<std::size_t>(point)].values[a];
+      cells += std::holds_alternative<std::string>(v) ? csv_text(std::get<std::string>(v))
+                                                      : format_value(v);
+    }
+  }
+  return cells;
+}
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                    const std::vector<RunRow>& rows) {
+  const auto keys = axis_keys(sweeps);
+  OutputFile file(path);
+  auto& out = file.stream();
+  out << axis_header(keys)
+      << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
+         "steps,wind_samples\n";
+  for (const auto& r : rows) {
+    const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
+    if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
+    const RunResult& m = r.result;
+    out << csv_text(r.sweep) << ',' << r.point << axis_cells(*sweep, r.point, keys) << ','
+        << r.trial << ',' << m.seed << ',' << csv_text(r.config_hash) << ','
+        << csv_text(outcome_name(m.outcome)) << ',' << (m.outcome == Outcome::kSuccess ? 1 : 0)
+        << ',' << csv_number(m.time) << ',' << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ','
+        << csv_number(m.overhead) << ',' << m.losses << ',' << csv_number(m.odor_fraction) << ','
+        << m.steps << ',' << m.wind_samples << '\n';
+  }
+  file.commit();
+}
+
+void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                       const std::vector<RunRow>& rows, int runs_override) {
+  const auto keys = axis_keys(sweeps);
+  OutputFile file(path);
+  auto& out = file.stream();
+  out << axis_header(keys)
+      << ",runs,successes,walls,timeouts,gave_up,success_rate,success_lo,success_hi,overhead_n,"
+         "overhead_mean,overhead_lo,overhead_hi,overhead_median,overhead_q1,overhead_q3,"
+         "mean_time,mean_losses\n";
+  for (const auto& sweep : sweeps) {
+    const int runs = runs_per_point(sweep, runs_override);
+    for (const auto& p : sweep.points) {
+      const auto results = point_runs(rows, sweep.def.name, p.index, runs);
+      const PointStats st = summarize(results);
+      out << csv_text(sweep.def.name) << ',' << p.index << axis_cells(sweep, p.index, keys) << ','
+          << st.runs << ',' << st.successes << ',' << st.walls << ',' << st.timeouts << ','
+          << st.gave_up << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo)
+          << ',' << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
+          << csv_number(st.overhead.mean) << ',' << csv_number(st.overhead.lo) << ','
+          << csv_number(st.overhead.hi) << ',' << csv_number(st.overhead_quartiles.median) << ','
+          << csv_number(st.overhead_quartiles.q1) << ',' << csv_number(st.overhead_quartiles.q3)
+          << ',' << csv_number(st.mean_time) << ',' << csv_number(st.mean_losses) << '\n';
+    }
+  }
+  file.commit();
+}
+
+void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                        const std::vector<RunRow>& rows, int runs_override) {
+  json doc_sweeps = json::array();
+  for (const auto& sweep : sweeps) {
+    const int runs = runs_per_point(sweep, runs_override);
+    json axes = json::array();
+    for (const auto& a : sweep.def.axes) {
+      json values = json::array();
+      for (const auto& v : a.values) values.push_back(value_to_json(v));
+      axes.push_back({{"key", a.key},
+                      {"label", a.label},
+                      {"values", values},
+                      {"fixed", a.fixed ? value_to_json(*a.fixed) : json(nullptr)}});
+    }
+    json points = json::array();
+    for (const auto& p : sweep.points) {
+      const auto results = point_runs(rows, sweep.def.name, p.index, runs);
+      json values = json::array();
+      for (const auto& v : p.values) values.push_back(value_to_json(v));
+      json run_list = json::array();
+      for (const auto& r : results) {
+        run_list.push_back(result_json(
+            r, {std::string(algorithm_name(p.scenario.controller.algorithm)), r.seed, r.trial}));
+      }
+      points.push_back({{"index", p.index},
+                        {"values", values},
+                        {"config_hash", p.config_hash},
+                        {"stats", stats_json(summarize(results))},
+                        {"runs", run_list}});
+    }
+    doc_sweeps.push_back({{"name", sweep.def.name},
+                          {"title", sweep.def.title},
+                          {"file", recorded_path(sweep.def.file)},
+                          {"seed", sweep.def.seed},
+                          {"runs_per_point", runs},
+                          {"axes", axes},
+                          {"points", points}});
+  }
+  OutputFile file(path);
+  auto& out = file.stream();
+  out << json{{"plumetrace_results", 1},
+              {"version", std::string(version())},
+              {"sweeps", doc_sweeps}}
+             .dump(1)
+      << "\n";
+  file.commit();
+}
+
+}  // namespace plumetrace

@@ -1,0 +1,129 @@
+#include "plumetrace/io/sweep_file.hpp"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "plumetrace/io/json_util.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "toml_input.hpp"
+
+namespace plumetrace {
+
+using detail::flatten;
+using detail::parse_toml_file;
+using detail::value_to_json;
+using nlohmann::json;
+
+namespace {
+
+std::optional<ConfigValue> toml_scalar(const toml::node& node) {
+  if (const auto* i = node.as_integer()) return static_cast<std::int64_t>(i->get());
+  if (const auto* d = node.as_floating_point()) return d->get();
+  if (const auto* s = node.as_string()) return s->get();
+  if (const auto* b = node.as_boolean()) return b->get();
+  return std::nullopt;
+}
+
+}  // namespace
+
+SweepDef read_sweep_file(const std::string& path) {
+  const toml::table table = parse_toml_file(path, "sweep file");
+  SweepDef def;
+  def.file = path;
+  const auto fail = [&](const std::string& msg) { throw ConfigError(path + ": " + msg); };
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  for (const auto& [k, node] : table) {
+    const std::string key(k.str());
+    if (key == "name" && node.is_string()) {
+      def.name = node.as_string()->get();
+    } else if (key == "title" && node.is_string()) {
+      def.title = node.as_string()->get();
+    } else if (key == "scenario" && node.is_string()) {
+      const std::filesystem::path p(node.as_string()->get());
+      def.scenario_path = (p.is_absolute() ? p : folder / p).lexically_normal().string();
+    } else if (key == "runs" && node.is_integer()) {
+      const auto runs = node.as_integer()->get();
+      if (runs < 1 || runs > kMaxCampaignRuns) {
+        fail("runs: must be an integer >= 1 and <= " + std::to_string(kMaxCampaignRuns) + " (got " +
+             std::to_string(runs) + ")");
+      }
+      def.runs = static_cast<int>(runs);
+    } else if (key == "seed" && node.is_integer()) {
+      const auto seed = node.as_integer()->get();
+      if (seed < 0) fail("seed: must be an integer >= 0");
+      def.seed = static_cast<std::uint64_t>(seed);
+    } else if (key == "set" && node.is_table()) {
+      flatten(*node.as_table(), "", path + ": [set]", Layer::kSweep, def.settings);
+    } else if (key == "axis" && node.is_array_of_tables()) {
+      for (const auto& item : *node.as_array()) {
+        Axis axis;
+        for (const auto& [ak, anode] : *item.as_table()) {
+          const std::string akey(ak.str());
+          if (akey == "key" && anode.is_string()) {
+            axis.key = anode.as_string()->get();
+          } else if (akey == "label" && anode.is_string()) {
+            axis.label = anode.as_string()->get();
+          } else if (akey == "fixed" && toml_scalar(anode)) {
+            axis.fixed = toml_scalar(anode);
+          } else if (akey == "values" && anode.is_array()) {
+            for (const auto& v : *anode.as_array()) {
+              const auto value = toml_scalar(v);
+              if (!value) fail("axis values must be numbers or strings");
+              axis.values.push_back(*value);
+            }
+          } else {
+            fail("[[axis]]: unknown or mistyped key '" + akey +
+                 "' (keys: key = \"dotted.key\", values = [...], label, fixed)");
+          }
+        }
+        if (axis.key.empty()) fail("[[axis]]: missing key = \"dotted.config.key\"");
+        if (axis.values.empty()) fail("axis " + axis.key + ": values must not be empty");
+        for (const auto& other : def.axes) {
+          if (other.key == axis.key) fail("axis " + axis.key + " is given twice");
+        }
+        if (axis.label.empty()) axis.label = axis.key;
+        def.axes.push_back(std::move(axis));
+      }
+    } else {
+      fail("unknown or mistyped key '" + key +
+           "' (keys: name, title, scenario, runs, seed, [set], [[axis]])");
+    }
+  }
+  if (def.name.empty()) fail("missing name = \"...\"");
+  if (def.axes.empty()) fail("no [[axis]]: a sweep varies at least one key");
+  // unknown axis keys and values of the wrong type are found here, naming the axis
+  Scenario probe;
+  for (const auto& axis : def.axes) {
+    for (const auto& v : axis.values) {
+      try {
+        set_field(probe, axis.key, v);
+      } catch (const ConfigError& e) {
+        fail("axis " + axis.key + ": " + e.what());
+      }
+    }
+  }
+  if (!def.scenario_path.empty()) def.scenario_settings = read_scenario_file(def.scenario_path);
+  return def;
+}
+
+std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps) {
+  json all = json::array();
+  for (const auto& s : sweeps) {
+    json axes = json::array();
+    for (const auto& a : s.def.axes) {
+      json values = json::array();
+      for (const auto& v : a.values) values.push_back(value_to_json(v));
+      axes.push_back({{"key", a.key}, {"values", values}});
+    }
+    json points = json::array();
+    for (const auto& p : s.points) points.push_back(p.config_hash);
+    all.push_back({{"name", s.def.name},
+                   {"seed", std::to_string(s.def.seed)},
+                   {"axes", axes},
+                   {"point_configs", points}});
+  }
+  return json{{"sweeps", all}}.dump();
+}
+
+}  // namespace plumetrace

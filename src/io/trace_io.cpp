@@ -1,0 +1,265 @@
+#include "plumetrace/io/trace_io.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/json_util.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+
+namespace plumetrace {
+
+using detail::csv_text;
+using detail::number_or_null;
+using detail::result_json;
+using nlohmann::json;
+
+void check_trace_path(const std::string& path) {
+  if (!ends_with(path, ".csv") && !ends_with(path, ".json")) {
+    throw ConfigError("--trace '" + path + "': the name must end in .csv or .json");
+  }
+  std::vector<std::string> files{path};
+  if (ends_with(path, ".csv")) files.push_back(path.substr(0, path.size() - 4) + ".filaments.csv");
+  for (const auto& f : files) check_writable(f);
+}
+
+void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
+                 const RunResult& result, const RunInfo& info) {
+  if (ends_with(path, ".json")) {
+    json steps{{"time", json::array()},
+               {"x", json::array()},
+               {"y", json::array()},
+               {"heading", json::array()},
+               {"odometer", json::array()},
+               {"state", json::array()},
+               {"odor", json::array()},
+               {"concentration", json::array()},
+               {"wind_samples", json::array()},
+               {"wind_x_body", json::array()},
+               {"wind_y_body", json::array()},
+               {"wind_z_body", json::array()}};
+    for (const auto& s : trace.steps) {
+      steps["time"].push_back(s.time);
+      steps["x"].push_back(s.pose.x);
+      steps["y"].push_back(s.pose.y);
+      steps["heading"].push_back(s.pose.heading);
+      steps["odometer"].push_back(s.odometer);
+      steps["state"].push_back(s.state);
+      steps["odor"].push_back(s.odor);
+      steps["concentration"].push_back(s.concentration);
+      steps["wind_samples"].push_back(s.wind_samples);
+      const bool sampled = s.wind_samples > 0;
+      steps["wind_x_body"].push_back(sampled ? json(s.wind_body.x) : json(nullptr));
+      steps["wind_y_body"].push_back(sampled ? json(s.wind_body.y) : json(nullptr));
+      steps["wind_z_body"].push_back(sampled ? json(s.wind_body.z) : json(nullptr));
+    }
+    // why: written a snapshot at a time, as the dump of the whole document would be (keys in
+    // nlohmann's order), since the snapshots are most of it and a document of them all held
+    // several times the trace's memory
+    OutputFile file(path);
+    auto& out = file.stream();
+    out << R"({"config":)" << json::parse(scenario_to_json(scenario)).dump()
+        << R"(,"plumetrace_trace":1,"result":)" << result_json(result, info).dump()
+        << R"(,"snapshots":[)";
+    for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
+      const auto& snap = trace.snapshots[i];
+      if (i > 0) out << ',';
+      out << json{{"time", snap.time}, {"x", snap.x}, {"y", snap.y}, {"z", snap.z}, {"w", snap.w}}
+                 .dump();
+    }
+    out << R"(],"steps":)" << steps.dump() << "}\n";
+    file.commit();
+    return;
+  }
+  if (!ends_with(path, ".csv")) {
+    throw IoError("trace file '" + path + "': the name must end in .csv or .json");
+  }
+  OutputFile file(path);
+  auto& out = file.stream();
+  out << "time,x,y,heading,odometer,state,odor,concentration,wind_samples,wind_x_body,"
+         "wind_y_body,wind_z_body\n";
+  for (const auto& s : trace.steps) {
+    out << s.time << ',' << s.pose.x << ',' << s.pose.y << ',' << s.pose.heading << ','
+        << s.odometer << ',' << csv_text(s.state) << ',' << (s.odor ? 1 : 0) << ','
+        << s.concentration << ',' << s.wind_samples << ',';
+    if (s.wind_samples > 0) {
+      out << s.wind_body.x << ',' << s.wind_body.y << ',' << s.wind_body.z << '\n';
+    } else {
+      out << ",,\n";
+    }
+  }
+  const std::string snap_path = path.substr(0, path.size() - 4) + ".filaments.csv";
+  OutputFile snap_file(snap_path);
+  auto& snaps = snap_file.stream();
+  snaps << "time,x,y,z,w\n";
+  for (const auto& snap : trace.snapshots) {
+    for (std::size_t i = 0; i < snap.x.size(); ++i) {
+      snaps << snap.time << ',' << snap.x[i] << ',' << snap.y[i] << ',' << snap.z[i] << ','
+            << snap.w[i] << '\n';
+    }
+  }
+  // why: the two files are one trace: both are finished before either is put in place, so a
+  // full disk leaves the previous pair (or none), never a trace without its filaments (F17)
+  file.finish();
+  snap_file.finish();
+  snap_file.publish();
+  try {
+    file.publish();
+  } catch (const IoError&) {
+    std::remove(snap_path.c_str());
+    throw;
+  }
+}
+
+namespace {
+
+// a config JSON object (nested by table) as settings of one layer, in file order
+std::vector<Setting> config_settings(const json& config, const std::string& origin) {
+  std::vector<Setting> settings;
+  for (const auto& [table, keys] : config.items()) {
+    for (const auto& [name, v] : keys.items()) {
+      const std::string key = table + "." + name;
+      if (v.is_boolean()) {
+        settings.push_back({key, v.get<bool>(), false, origin, Layer::kFile});
+      } else if (v.is_number_integer() &&
+                 (!v.is_number_unsigned() ||
+                  v.get<std::uint64_t>() <=
+                      static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))) {
+        settings.push_back({key, v.get<std::int64_t>(), false, origin, Layer::kFile});
+      } else if (v.is_number()) {
+        settings.push_back({key, v.get<double>(), false, origin, Layer::kFile});
+      } else {
+        // why: strings are parsed for the key's type, as "inf" is written for infinite numbers
+        settings.push_back({key, v.get<std::string>(), true, origin, Layer::kFile});
+      }
+    }
+  }
+  return settings;
+}
+
+Outcome outcome_from_name(const std::string& name) {
+  for (Outcome o : {Outcome::kRunning, Outcome::kSuccess, Outcome::kWall, Outcome::kTimeout,
+                    Outcome::kGaveUp}) {
+    if (outcome_name(o) == name) return o;
+  }
+  throw ConfigError("unknown outcome '" + name + "'");
+}
+
+// a whole-number field of a trace, checked to lie in [lo, hi]; why: get<int>() wraps a number
+// that does not fit, and truncates 1.5 (issue 13, F18)
+template <class T>
+T trace_integer(const json& v, const std::string& path, const std::string& field, T lo, T hi) {
+  bool ok = false;
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    ok = std::cmp_greater_equal(u, lo) && std::cmp_less_equal(u, hi);
+  } else if (v.is_number_integer()) {
+    const auto i = v.get<std::int64_t>();
+    ok = std::cmp_greater_equal(i, lo) && std::cmp_less_equal(i, hi);
+  }
+  if (!ok) {
+    throw ConfigError("trace '" + path + "': " + field + " must be a whole number from " +
+                      std::to_string(lo) + " to " + std::to_string(hi) + " (got " + v.dump() + ")");
+  }
+  return v.get<T>();
+}
+
+double number_or_nan(const json& v) {
+  return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
+}
+
+}  // namespace
+
+RecordedRun read_trace(const std::string& path) {
+  if (ends_with(path, ".csv")) {
+    throw ConfigError("trace '" + path +
+                      "': a CSV trace carries no configuration; write the trace as .json "
+                      "(plumetrace run --trace run.json)");
+  }
+  std::string text, why;
+  if (!read_regular_file(path, text, why)) {
+    throw IoError("cannot read trace '" + path + "': " + why);
+  }
+  RecordedRun run;
+  try {
+    const json doc = json::parse(text);
+    if (!doc.is_object() || !doc.contains("plumetrace_trace")) {
+      throw ConfigError("trace '" + path + "': not a plumetrace trace (no 'plumetrace_trace' key)");
+    }
+    run.scenario = build_scenario(config_settings(doc.at("config"), path));
+
+    const json& r = doc.at("result");
+    constexpr auto kU64 = std::numeric_limits<std::uint64_t>::max();
+    constexpr auto kI64 = std::numeric_limits<std::int64_t>::max();
+    constexpr auto kInt = std::numeric_limits<int>::max();
+    run.info = {r.at("algorithm").get<std::string>(),
+                trace_integer<std::uint64_t>(r.at("seed"), path, "result.seed", 0, kU64),
+                trace_integer<std::uint64_t>(r.at("trial"), path, "result.trial", 0, kU64)};
+    run.version = r.at("version").get<std::string>();
+    run.result.outcome = outcome_from_name(r.at("outcome").get<std::string>());
+    run.result.time = r.at("time_s").get<double>();
+    run.result.d_t = r.at("d_t").get<double>();
+    run.result.d_u = r.at("d_u").get<double>();
+    run.result.overhead = number_or_nan(r.at("overhead"));
+    run.result.losses = trace_integer<int>(r.at("losses"), path, "result.losses", 0, kInt);
+    run.result.odor_fraction = r.at("odor_fraction").get<double>();
+    run.result.steps = trace_integer<std::int64_t>(r.at("steps"), path, "result.steps", 0, kI64);
+    run.result.wind_samples =
+        trace_integer<std::int64_t>(r.at("wind_samples"), path, "result.wind_samples", 0, kI64);
+    run.result.seed = run.info.seed;
+    run.result.trial = run.info.trial;
+
+    const json& st = doc.at("steps");
+    const std::size_t n = st.at("time").size();
+    for (const char* column : {"x", "y", "heading", "odometer", "state", "odor", "concentration",
+                               "wind_samples", "wind_x_body", "wind_y_body", "wind_z_body"}) {
+      if (st.at(column).size() != n) {
+        throw ConfigError("trace '" + path + "': column '" + column + "' has " +
+                          std::to_string(st.at(column).size()) + " rows, 'time' has " +
+                          std::to_string(n));
+      }
+    }
+    if (n == 0) throw ConfigError("trace '" + path + "': no steps");
+    run.trace.steps.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      TraceStep& s = run.trace.steps[i];
+      s.time = st["time"][i].get<double>();
+      s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(), st["heading"][i].get<double>()};
+      s.odometer = st["odometer"][i].get<double>();
+      s.state = st["state"][i].get<std::string>();
+      s.odor = st["odor"][i].get<bool>();
+      s.concentration = st["concentration"][i].get<double>();
+      s.wind_samples = trace_integer<int>(st["wind_samples"][i], path,
+                                          "steps.wind_samples[" + std::to_string(i) + "]", 0, kInt);
+      if (s.wind_samples > 0) {
+        s.wind_body = {st["wind_x_body"][i].get<double>(), st["wind_y_body"][i].get<double>(),
+                       st["wind_z_body"][i].get<double>()};
+      }
+    }
+    for (const auto& snap : doc.at("snapshots")) {
+      FilamentSnapshot f;
+      f.time = snap.at("time").get<double>();
+      f.x = snap.at("x").get<std::vector<double>>();
+      f.y = snap.at("y").get<std::vector<double>>();
+      f.z = snap.at("z").get<std::vector<double>>();
+      f.w = snap.at("w").get<std::vector<double>>();
+      if (f.y.size() != f.x.size() || f.z.size() != f.x.size() || f.w.size() != f.x.size()) {
+        throw ConfigError("trace '" + path +
+                          "': a filament snapshot has columns of unequal length");
+      }
+      run.trace.snapshots.push_back(std::move(f));
+    }
+  } catch (const json::exception& e) {
+    throw ConfigError("trace '" + path + "': not a valid plumetrace trace (" + e.what() + ")");
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    if (what.rfind("trace '", 0) == 0) throw;
+    throw ConfigError("trace '" + path + "': " + what);
+  }
+  return run;
+}
+
+}  // namespace plumetrace

@@ -1,0 +1,51 @@
+#include "plumetrace/sim/trace.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "plumetrace/sim/scenario.hpp"
+
+namespace plumetrace {
+
+namespace {
+
+// steps between snapshots: none for 0; why: an interval beyond any run (kMaxSteps) takes only
+// the snapshot at release, and never reaches lround, whose result is unspecified there
+long snapshot_steps(double interval, double dt) {
+  if (!(interval > 0.0)) return 0L;
+  const double steps = interval / dt;
+  return steps > kMaxSteps ? static_cast<long>(kMaxSteps) + 1 : std::max(1L, std::lround(steps));
+}
+
+}  // namespace
+
+TraceRecorder::TraceRecorder(Trace& trace, double snapshot_interval, double dt)
+    : trace_(trace), snapshot_every_(snapshot_steps(snapshot_interval, dt)) {}
+
+void TraceRecorder::operator()(const World& world) {
+  const auto& sensor = world.wind_sensor();
+  TraceStep row;
+  row.time = world.time();
+  row.pose = world.robot().pose;
+  row.odometer = world.robot().odometer;
+  row.state = std::string(world.controller().state());
+  row.odor = world.odor();
+  row.concentration = world.concentration();
+  row.wind_samples = world.time() > 0.0 ? sensor.samples() : 0;
+  row.wind_body = sensor.last_sample();
+  trace_.steps.push_back(std::move(row));
+
+  if (snapshot_every_ > 0 && calls_ % snapshot_every_ == 0) {
+    const Plume& plume = world.plume();
+    FilamentSnapshot snap;
+    snap.time = world.time();
+    snap.x.assign(plume.x().begin(), plume.x().end());
+    snap.y.assign(plume.y().begin(), plume.y().end());
+    snap.z.assign(plume.z().begin(), plume.z().end());
+    snap.w.assign(plume.w().begin(), plume.w().end());
+    trace_.snapshots.push_back(std::move(snap));
+  }
+  ++calls_;
+}
+
+}  // namespace plumetrace

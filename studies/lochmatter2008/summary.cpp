@@ -1,0 +1,623 @@
+#include "lochmatter2008/summary.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <system_error>
+#include <thread>
+
+#include "plumetrace/io/json_util.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/probe.hpp"
+#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/sim/trace.hpp"
+
+namespace plumetrace {
+
+namespace {
+
+using detail::json;
+using detail::number_or_null;
+using detail::stats_json;
+using detail::value_to_json;
+
+const char* const kSetNames[] = {"A", "B", "C", "D", "E", "F", "G", "H", "I"};
+
+double as_number(const ConfigValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  return NAN;
+}
+
+std::string as_text(const ConfigValue& v) {
+  return std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v);
+}
+
+const ExpandedSweep* find(const std::vector<ExpandedSweep>& sweeps, const std::string& name) {
+  for (const auto& s : sweeps) {
+    if (s.def.name == name) return &s;
+  }
+  return nullptr;
+}
+
+json point_json(const PointStats& st, const SweepPoint& p) {
+  json j = stats_json(st);
+  j["config_hash"] = p.config_hash;
+  return j;
+}
+
+// the first run of the set's fixed point that succeeded (or, with `success` false, failed),
+// re-run with a trace (Fig. 6)
+json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
+                bool success) {
+  const SetStats st = set_stats(sweep, rows, runs);
+  if (st.fixed_index < 0) return nullptr;
+  const SweepPoint& p = sweep.points[static_cast<std::size_t>(st.fixed_index)];
+  for (const auto& r : point_runs(rows, sweep.def.name, p.index, runs)) {
+    if ((r.outcome == Outcome::kSuccess) != success) continue;
+    Trace trace;
+    const RunResult again =
+        run_once(p.scenario, r.seed, r.trial, TraceRecorder(trace, 0.0, p.scenario.sim.dt));
+    json x = json::array(), y = json::array(), state = json::array(), odor = json::array();
+    const Vec3& c = p.scenario.source.center;
+    double closest = INFINITY;
+    for (const auto& s : trace.steps) {
+      closest = std::min(closest, std::hypot(s.pose.x - c.x, s.pose.y - c.y));
+    }
+    // every other step is plenty for a figure
+    for (std::size_t i = 0; i < trace.steps.size(); i += 2) {
+      const auto& s = trace.steps[i];
+      x.push_back(s.pose.x);
+      y.push_back(s.pose.y);
+      state.push_back(s.state);
+      odor.push_back(s.odor ? 1 : 0);
+    }
+    return {{"algorithm", st.algorithm},
+            {"set", sweep.def.name},
+            {"trial", r.trial},
+            {"seed", r.seed},
+            {"x", x},
+            {"y", y},
+            {"state", state},
+            {"odor", odor},
+            {"outcome", std::string(outcome_name(again.outcome))},
+            {"overhead", number_or_null(again.overhead)},
+            {"time_s", again.time},
+            {"closest_m", number_or_null(closest)}};
+  }
+  return nullptr;
+}
+
+// where a failed run ended and how close it came to the source, from a re-run
+struct FailedRun {
+  Outcome outcome = Outcome::kRunning;
+  double end_x = NAN;         // m
+  double end_y = NAN;         // m
+  double closest = INFINITY;  // smallest distance of the robot centre to the source (m)
+  double min_x = INFINITY;    // most upwind x reached (m)
+};
+
+FailedRun rerun_failed(const Scenario& scenario, const RunResult& r) {
+  FailedRun f;
+  const Vec3& c = scenario.source.center;
+  const RunResult again = run_once(scenario, r.seed, r.trial, [&](const World& world) {
+    const Pose& p = world.robot().pose;
+    f.closest = std::min(f.closest, std::hypot(p.x - c.x, p.y - c.y));
+    f.min_x = std::min(f.min_x, p.x);
+    f.end_x = p.x;
+    f.end_y = p.y;
+  });
+  f.outcome = again.outcome;
+  return f;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// the failed runs of each algorithm at its fixed values (sets A, D, G): counts by outcome over
+// all of them, and where the first kFailuresExamined (by trial) end, re-run on `threads` threads
+json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                   int runs_override, int threads) {
+  struct Job {
+    const Scenario* scenario;
+    RunResult run;
+    std::size_t algorithm;
+  };
+  std::vector<Job> jobs;
+  json algorithms = json::array();
+  for (const char* name : {"A", "D", "G"}) {
+    const ExpandedSweep* sweep = find(sweeps, name);
+    if (!sweep) continue;
+    const int runs = runs_per_point(*sweep, runs_override);
+    const SetStats st = set_stats(*sweep, rows, runs);
+    if (st.fixed_index < 0) continue;
+    const SweepPoint& p = sweep->points[static_cast<std::size_t>(st.fixed_index)];
+    const PointStats& ps = st.points[static_cast<std::size_t>(st.fixed_index)];
+    int examined = 0;
+    for (const auto& r : point_runs(rows, sweep->def.name, p.index, runs)) {
+      if (r.outcome == Outcome::kSuccess || examined >= kFailuresExamined) continue;
+      jobs.push_back({&p.scenario, r, algorithms.size()});
+      ++examined;
+    }
+    const Vec3& c = p.scenario.source.center;
+    algorithms.push_back({{"algorithm", st.algorithm},
+                          {"set", name},
+                          {"runs", ps.runs},
+                          {"failed", ps.runs - ps.successes},
+                          {"walls", ps.walls},
+                          {"timeouts", ps.timeouts},
+                          {"gave_up", ps.gave_up},
+                          {"examined", examined},
+                          {"source_x", c.x},
+                          {"source_y", c.y}});
+  }
+  // the re-runs, in parallel; each result lands in its own slot
+  std::vector<FailedRun> done(jobs.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex failure_mutex;
+  std::exception_ptr failure;
+  const auto work = [&] {
+    try {
+      for (std::size_t i = next++; i < jobs.size(); i = next++) {
+        done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run);
+      }
+    } catch (...) {
+      // why: an exception leaving a thread ends the process; the caller rethrows it instead
+      const std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = jobs.size();
+    }
+  };
+  std::vector<std::thread> pool;
+  try {
+    for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {
+    // why: the re-runs share one counter, so fewer threads than asked only take longer
+  }
+  work();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+
+  for (std::size_t a = 0; a < algorithms.size(); ++a) {
+    const double sx = algorithms[a]["source_x"], sy = algorithms[a]["source_y"];
+    int upwind = 0, upwind_wall = 0, near = 0, passed = 0, close = 0;
+    std::vector<double> closest, end_distance;
+    json ends = json::array();
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      if (jobs[i].algorithm != a) continue;
+      const FailedRun& f = done[i];
+      ends.push_back({{"trial", jobs[i].run.trial},
+                      {"outcome", std::string(outcome_name(f.outcome))},
+                      {"x", f.end_x},
+                      {"y", f.end_y},
+                      {"closest_m", f.closest}});
+      const double d = std::hypot(f.end_x - sx, f.end_y - sy);
+      upwind += f.end_x < sx;
+      upwind_wall += f.end_x < sx && f.outcome == Outcome::kWall;
+      near += d <= 1.0;
+      passed += f.min_x < sx;
+      close += f.closest <= 0.5;
+      closest.push_back(f.closest);
+      end_distance.push_back(d);
+    }
+    json& j = algorithms[a];
+    j["end_upwind"] = upwind;
+    j["end_upwind_wall"] = upwind_wall;
+    j["end_within_1m"] = near;
+    j["passed_source"] = passed;
+    j["came_within_0_5m"] = close;
+    j["closest_median_m"] = number_or_null(median(closest));
+    j["end_distance_median_m"] = number_or_null(median(end_distance));
+    j["ends"] = ends;
+  }
+  return {{"examined_max", kFailuresExamined}, {"algorithms", algorithms}};
+}
+
+// fraction of instants with odor on a grid over the arena (the background of Fig. 6)
+json detection_map(const Scenario& scenario, std::uint64_t seed) {
+  const auto& a = scenario.arena;
+  constexpr double kDx = 0.2, kDy = 0.05;
+  std::vector<double> xs, ys;
+  for (double x = a.x_min + kDx / 2; x < a.x_max; x += kDx) xs.push_back(x);
+  for (double y = a.y_min + kDy / 2; y < a.y_max; y += kDy) ys.push_back(y);
+  std::vector<Vec3> points;
+  for (const double y : ys) {
+    for (const double x : xs) points.push_back({x, y, scenario.odor.height});
+  }
+  ProbeOptions options;
+  options.duration = 20.0;
+  options.interval = 0.32;
+  options.seed = seed;
+  const auto results = probe_plume(scenario, points, options);
+  json fraction = json::array();
+  for (std::size_t j = 0; j < ys.size(); ++j) {
+    json row = json::array();
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      row.push_back(results[j * xs.size() + i].detect_fraction);
+    }
+    fraction.push_back(row);
+  }
+  return {{"x", xs}, {"y", ys}, {"fraction", fraction}};
+}
+
+json sweep_definition_json(const SweepDef& def) {
+  json axes = json::array();
+  for (const auto& ax : def.axes) {
+    json values = json::array();
+    for (const auto& v : ax.values) values.push_back(value_to_json(v));
+    axes.push_back({{"key", ax.key}, {"label", ax.label}, {"values", values}});
+  }
+  json settings = json::object();
+  for (const auto& s : def.settings) settings[s.key] = value_to_json(s.value);
+  return {{"name", def.name}, {"title", def.title}, {"scenario", recorded_path(def.scenario_path)},
+          {"set", settings},  {"axes", axes},       {"runs", def.runs},
+          {"seed", def.seed}};
+}
+
+// a claim as JSON: id, text, verdict, margin and evidence
+json claim_json(const ClaimResult& c) {
+  return {{"id", c.id},
+          {"text", c.text},
+          {"verdict", std::string(verdict_name(c.verdict))},
+          {"margin", number_or_null(c.margin)},
+          {"evidence", c.evidence}};
+}
+
+// one reading: its settings, claims, fixed-value statistics and detection map (maps are shared
+// between readings whose plume and sensor height are the same)
+json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
+                  const std::vector<RunRow>& rows, int runs_override,
+                  const std::set<std::string>& compared_keys, std::map<std::string, json>& maps);
+
+}  // namespace
+
+std::string reading_sweep_name(const std::string& reading, bool main, const std::string& set) {
+  return main ? set : reading + "/" + set;
+}
+
+std::vector<ExpandedSweep> reading_sets(const std::vector<SweepDef>& sets, const Reading& reading,
+                                        bool main) {
+  std::vector<ExpandedSweep> out;
+  for (SweepDef def : sets) {
+    def.name = reading_sweep_name(reading.name, main, def.name);
+    out.push_back(expand_sweep(def, reading.settings));
+  }
+  return out;
+}
+
+namespace {
+
+json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
+                  const std::vector<RunRow>& rows, int runs_override,
+                  const std::set<std::string>& compared_keys, std::map<std::string, json>& maps) {
+  json settings = json::object();
+  for (const auto& s : reading.settings) settings[s.key] = value_to_json(s.value);
+  std::map<std::string, SetStats> by_name;
+  json fixed = json::array();
+  for (const char* name : kSetNames) {
+    const ExpandedSweep* sweep = find(sweeps, reading_sweep_name(reading.name, main, name));
+    if (!sweep) continue;
+    const SetStats st = set_stats(*sweep, rows, runs_per_point(*sweep, runs_override));
+    by_name[name] = st;
+    const std::string set = name;
+    if ((set == "A" || set == "D" || set == "G") && st.fixed_index >= 0) {
+      const auto i = static_cast<std::size_t>(st.fixed_index);
+      json p = point_json(st.points[i], sweep->points[i]);
+      p["algorithm"] = st.algorithm;
+      p["set"] = set;
+      p["value"] = st.values[i];
+      fixed.push_back(p);
+    }
+  }
+  json claims = json::array();
+  int held = 0, not_held = 0, unclear = 0;
+  for (const auto& c : evaluate_claims(by_name)) {
+    claims.push_back(claim_json(c));
+    held += c.verdict == Verdict::kHolds;
+    not_held += c.verdict == Verdict::kDoesNotHold;
+    unclear += c.verdict == Verdict::kUnclear;
+  }
+  json doc{{"name", reading.name},
+           {"main", main},
+           {"file", reading.file.empty()
+                        ? json(nullptr)
+                        : json(std::filesystem::path(reading.file).filename().string())},
+           {"settings", settings},
+           {"held", held},
+           {"not_held", not_held},
+           {"unclear", unclear},
+           {"claims", claims},
+           {"fixed", fixed}};
+  if (const ExpandedSweep* a = find(sweeps, reading_sweep_name(reading.name, main, "A"))) {
+    const Scenario& sc = a->points.at(0).scenario;
+    const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
+    if (!maps.count(key)) maps[key] = detection_map(sc, a->def.seed);
+    doc["detection_map"] = maps[key];
+    doc["success_radius"] = sc.supervisor.success_radius;
+    // the value every compared key takes under this reading, preset or built-in default
+    json values = json::object();
+    for (const auto& k : compared_keys) values[k] = value_to_json(get_field(sc, k));
+    doc["values"] = values;
+  }
+  return doc;
+}
+
+}  // namespace
+
+SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
+                   const std::vector<int>& points, std::size_t axis) {
+  SetStats st;
+  st.name = sweep.def.name;
+  st.key = sweep.def.axes.at(axis).key;
+  std::vector<int> selected = points;
+  if (selected.empty()) {
+    for (const auto& p : sweep.points) selected.push_back(p.index);
+  }
+  for (const int index : selected) {
+    const SweepPoint& p = sweep.points.at(static_cast<std::size_t>(index));
+    st.algorithm = std::string(algorithm_name(p.scenario.controller.algorithm));
+    const double value = as_number(p.values.at(axis));
+    const auto& fixed = sweep.def.axes[axis].fixed;
+    if (fixed && std::fabs(as_number(*fixed) - value) < 1e-12) {
+      st.fixed_index = static_cast<int>(st.values.size());
+    }
+    st.values.push_back(value);
+    st.points.push_back(summarize(point_runs(rows, sweep.def.name, index, runs)));
+  }
+  return st;
+}
+
+std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                          const ReproduceInfo& info) {
+  json doc;
+  doc["plumetrace_summary"] = 1;
+  doc["version"] = std::string(version());
+  doc["generated_by"] = info.command;
+  doc["preset"] = info.preset;
+  doc["threads"] = info.threads;
+  doc["elapsed_s"] = info.elapsed;
+  if (info.computed >= 0) doc["computed_runs"] = info.computed;
+  doc["config_toml"] = info.base_config;
+  std::int64_t total = 0;
+  for (const auto& s : sweeps) {
+    total += static_cast<std::int64_t>(s.points.size()) * runs_per_point(s, info.runs_override);
+  }
+  doc["total_runs"] = total;
+
+  // the nine sets and the claims
+  json sets = json::array();
+  std::map<std::string, SetStats> by_name;
+  for (const char* name : kSetNames) {
+    const ExpandedSweep* sweep = find(sweeps, name);
+    if (!sweep) continue;
+    const int runs = runs_per_point(*sweep, info.runs_override);
+    doc["seed"] = sweep->def.seed;
+    doc["runs_per_point"] = runs;
+    const SetStats st = set_stats(*sweep, rows, runs);
+    json points = json::array();
+    for (std::size_t i = 0; i < st.points.size(); ++i) {
+      json p = point_json(st.points[i], sweep->points[i]);
+      p["value"] = st.values[i];
+      points.push_back(p);
+    }
+    sets.push_back({{"name", st.name},
+                    {"title", sweep->def.title},
+                    {"algorithm", st.algorithm},
+                    {"key", st.key},
+                    {"label", sweep->def.axes[0].label},
+                    {"values", st.values},
+                    {"fixed_index", st.fixed_index},
+                    {"points", points}});
+    by_name[name] = st;
+  }
+  doc["sets"] = sets;
+  json claims = json::array();
+  for (const auto& c : evaluate_claims(by_name)) claims.push_back(claim_json(c));
+  doc["claims"] = claims;
+
+  // the three algorithms at their fixed values under other success radii
+  json variants = json::array(), sens_rows = json::array();
+  const auto add_variant = [&](const std::string& v) {
+    if (std::find(variants.begin(), variants.end(), json(v)) == variants.end()) {
+      variants.push_back(v);
+    }
+  };
+  if (const ExpandedSweep* radius = find(sweeps, "radius")) {
+    const int runs = runs_per_point(*radius, info.runs_override);
+    for (const auto& p : radius->points) {
+      const std::string variant = "success_radius=" + as_text(p.values.at(1));
+      add_variant(variant);
+      json row = point_json(summarize(point_runs(rows, "radius", p.index, runs)), p);
+      row["algorithm"] = as_text(p.values.at(0));
+      row["variant"] = variant;
+      sens_rows.push_back(row);
+    }
+  }
+  doc["sensitivity"] = {{"variants", variants}, {"rows", sens_rows}};
+
+  // Fig. 6: one successful and one failed run per algorithm at the fixed values, over the
+  // detection map
+  json trajectories = json::array(), missing = json::array();
+  for (const char* name : {"A", "D", "G"}) {
+    const ExpandedSweep* sweep = find(sweeps, name);
+    if (!sweep) continue;
+    const int runs = runs_per_point(*sweep, info.runs_override);
+    json t = trajectory(*sweep, rows, runs, true);
+    if (t.is_null()) {
+      missing.push_back(
+          std::string(algorithm_name(sweep->points[0].scenario.controller.algorithm)));
+    } else {
+      trajectories.push_back(t);
+    }
+    json failed = trajectory(*sweep, rows, runs, false);
+    if (!failed.is_null()) trajectories.push_back(failed);
+  }
+  doc["trajectories"] = trajectories;
+  doc["trajectories_missing"] = missing;
+  doc["failures"] = failures_json(sweeps, rows, info.runs_override, info.threads);
+
+  // each reading's claims, fixed values and detection map; the main one's map is shared
+  std::map<std::string, json> maps;
+  std::set<std::string> compared_keys;
+  for (const auto& r : info.readings) {
+    for (const auto& s : r.settings) compared_keys.insert(s.key);
+  }
+  json readings = json::array();
+  for (std::size_t i = 0; i < info.readings.size(); ++i) {
+    readings.push_back(reading_json(info.readings[i], i == 0, sweeps, rows, info.runs_override,
+                                    compared_keys, maps));
+  }
+  doc["readings"] = readings;
+  if (const ExpandedSweep* a = find(sweeps, "A")) {
+    const Scenario& s = a->points.at(0).scenario;
+    if (!readings.empty() && readings[0].contains("detection_map")) {
+      doc["detection_map"] = readings[0]["detection_map"];
+    } else {
+      doc["detection_map"] = detection_map(s, a->def.seed);
+    }
+    doc["arena"] = {{"x_min", s.arena.x_min},
+                    {"x_max", s.arena.x_max},
+                    {"y_min", s.arena.y_min},
+                    {"y_max", s.arena.y_max}};
+    doc["source"] = {{"x", s.source.center.x},
+                     {"y", s.source.center.y},
+                     {"radius", s.source.radius},
+                     {"success_radius", s.supervisor.success_radius}};
+    doc["wind"] = {{"vx", s.wind.velocity.x}, {"vy", s.wind.velocity.y}};
+  }
+  // the main reading's sweeps (the other readings' are the same files with their settings)
+  json defs = json::array();
+  for (const auto& s : sweeps) {
+    if (s.def.name.find('/') != std::string::npos) continue;
+    defs.push_back({{"name", s.def.name},
+                    {"file", recorded_path(s.def.file)},
+                    {"definition", sweep_definition_json(s.def)}});
+  }
+  doc["sweeps"] = defs;
+  return doc.dump(1);
+}
+
+std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs) {
+  std::vector<SweepDef> out;
+  for (SweepDef def : sets) {
+    std::vector<Axis> axes{
+        {"plume.noise_mode",
+         {std::string("velocity"), std::string("per_step"), std::string("wiener")},
+         "noise mode",
+         std::nullopt},
+        {"plume.kernel", {std::string("gaussian"), std::string("printed")}, "kernel", std::nullopt},
+        {"supervisor.success_radius", {0.185, 0.3, 0.45, 0.6}, "success radius (m)", std::nullopt}};
+    axes.insert(axes.end(), def.axes.begin(), def.axes.end());
+    def.axes = axes;
+    def.runs = runs;
+    out.push_back(def);
+  }
+  return out;
+}
+
+std::vector<SensitivityRow> sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
+                                               const std::vector<RunRow>& rows, int runs) {
+  std::vector<SensitivityRow> matrix;
+  if (sweeps.empty()) return matrix;
+  const auto& axes = sweeps.front().def.axes;
+  for (const auto& noise : axes[0].values) {
+    for (const auto& kernel : axes[1].values) {
+      for (const auto& radius : axes[2].values) {
+        // each set restricted to the points of this combination, varied along its own axis
+        std::map<std::string, SetStats> sets;
+        for (const auto& sweep : sweeps) {
+          std::vector<int> selected;
+          for (const auto& p : sweep.points) {
+            if (as_text(p.values[0]) == as_text(noise) && as_text(p.values[1]) == as_text(kernel) &&
+                as_number(p.values[2]) == as_number(radius)) {
+              selected.push_back(p.index);
+            }
+          }
+          sets[sweep.def.name] = set_stats(sweep, rows, runs, selected, 3);
+        }
+        matrix.push_back(
+            {as_text(noise), as_text(kernel), as_number(radius), evaluate_claims(sets)});
+      }
+    }
+  }
+  return matrix;
+}
+
+std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs, double elapsed) {
+  json claims = json::array(), out_rows = json::array();
+  if (!matrix.empty()) {
+    for (const auto& c : matrix.front().claims) claims.push_back({{"id", c.id}, {"text", c.text}});
+  }
+  for (const auto& row : matrix) {
+    json verdicts = json::array();
+    int held = 0;
+    for (const auto& c : row.claims) {
+      verdicts.push_back(std::string(verdict_name(c.verdict)));
+      held += c.verdict == Verdict::kHolds;
+    }
+    out_rows.push_back({{"noise_mode", row.noise_mode},
+                        {"kernel", row.kernel},
+                        {"success_radius", row.success_radius},
+                        {"verdicts", verdicts},
+                        {"held", held}});
+  }
+  return json{{"plumetrace_sensitivity", 1},
+              {"version", std::string(version())},
+              {"runs_per_point", runs},
+              {"elapsed_s", elapsed},
+              {"claims", claims},
+              {"rows", out_rows}}
+      .dump(1);
+}
+
+std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int runs,
+                                 double elapsed) {
+  std::ostringstream md;
+  md << "# Sensitivity study: which claims hold under which model reading\n\n"
+     << "Each row reruns the nine experiment sets (docs/experiments.md) with " << runs
+     << " runs per value under one combination of noise mode, kernel and success radius "
+        "(docs/experiments.md, `plumetrace sensitivity`). Cells: H holds, - does not hold, "
+        "? unclear (rules in docs/claims.md). Computed in "
+     << static_cast<long>(elapsed) << " s.\n\n| noise mode | kernel | success radius |";
+  const std::size_t n = matrix.empty() ? 0 : matrix.front().claims.size();
+  for (std::size_t i = 0; i < n; ++i) md << " " << matrix.front().claims[i].id << " |";
+  md << " held |\n|---|---|---|";
+  for (std::size_t i = 0; i <= n; ++i) md << "---|";
+  md << "\n";
+  for (const auto& row : matrix) {
+    int held = 0;
+    md << "| " << row.noise_mode << " | " << row.kernel << " | " << row.success_radius << " |";
+    for (const auto& c : row.claims) {
+      md << " "
+         << (c.verdict == Verdict::kHolds         ? "H"
+             : c.verdict == Verdict::kDoesNotHold ? "-"
+                                                  : "?")
+         << " |";
+      held += c.verdict == Verdict::kHolds;
+    }
+    md << " " << held << " |\n";
+  }
+  if (!matrix.empty()) {
+    md << "\nClaims:\n\n";
+    for (const auto& c : matrix.front().claims) md << c.id << ". " << c.text << "\n";
+  }
+  return md.str();
+}
+
+}  // namespace plumetrace

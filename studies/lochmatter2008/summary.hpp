@@ -1,0 +1,82 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "lochmatter2008/claims.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/experiment/store.hpp"
+#include "plumetrace/experiment/sweep.hpp"
+
+namespace plumetrace {
+
+/// The statistics of a single-axis sweep as an experiment set (docs/experiments.md); the varied
+/// values must be numbers. `points` selects a subset of the sweep's points (all when empty) and
+/// `axis` which axis is the varied one.
+SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
+                   const std::vector<int>& points = {}, std::size_t axis = 0);
+
+/// The store name of experiment set `set` under a reading: the set's own name ("A") for the
+/// main reading, "READING/SET" ("plugin/A") for the others.
+std::string reading_sweep_name(const std::string& reading, bool main, const std::string& set);
+
+/// The experiment sets under a reading: each definition expanded with the reading's settings as
+/// overrides and named by reading_sweep_name. Throws ConfigError when the reading sets a key
+/// that is an axis of a set (naming the preset file and the key).
+std::vector<ExpandedSweep> reading_sets(const std::vector<SweepDef>& sets, const Reading& reading,
+                                        bool main);
+
+/// Failed runs re-run per algorithm at the fixed values (of the main reading) at most.
+inline constexpr int kFailuresExamined = 25;
+
+/// What `reproduce` hands to the report beyond the store's rows.
+struct ReproduceInfo {
+  std::string command;            ///< the command line
+  std::string preset;             ///< the main reading's name
+  std::vector<Reading> readings;  ///< every reading run, the main one first
+  int runs_override = 0;          ///< --runs (0: the sweep files')
+  int threads = 0;                ///< worker threads used
+  double elapsed = 0.0;           ///< seconds spent running (this call)
+  std::int64_t computed = -1;     ///< runs computed by this call (-1: not known)
+  std::string base_config;        ///< the resolved base scenario (TOML)
+};
+
+/// Builds summary.json for the report (schema in docs/report.md): the nine sets' statistics,
+/// the claims, the sensitivity rows, one successful and one failed trajectory per algorithm at
+/// the fixed values (re-run from seed and trial), the plume's detection map, where failed runs
+/// end (up to kFailuresExamined re-run per algorithm), and for each reading its claims, its
+/// fixed-value statistics and its detection map.
+std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                          const ReproduceInfo& info);
+
+/// One row of the sensitivity claims matrix.
+struct SensitivityRow {
+  std::string noise_mode;           ///< plume.noise_mode
+  std::string kernel;               ///< plume.kernel
+  double success_radius = 0.0;      ///< supervisor.success_radius (m)
+  std::vector<ClaimResult> claims;  ///< claims 1-11 under this combination
+};
+
+/// The sensitivity study's sweeps: each of the nine sets with the axes noise_mode, kernel and
+/// success radius put in front of its own (docs/experiments.md, `plumetrace sensitivity`).
+std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs);
+
+/// The claims matrix from the sensitivity sweeps' rows.
+std::vector<SensitivityRow> sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
+                                               const std::vector<RunRow>& rows, int runs);
+
+/// sensitivity.json (schema in docs/report.md).
+std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs, double elapsed);
+
+/// The claims matrix as a Markdown table.
+std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int runs,
+                                 double elapsed);
+
+}  // namespace plumetrace

@@ -3,16 +3,16 @@
 
 #include <filesystem>
 
-#include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/sim/scenario.hpp"
-#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/sim/world.hpp"
 
 namespace plumetrace {

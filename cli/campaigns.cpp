@@ -12,17 +12,17 @@
 #include <sstream>
 #include <thread>
 
-#include "plumetrace/experiment/campaign.hpp"
+#include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
 #include "plumetrace/paths.hpp"
-#include "lochmatter2008/summary.hpp"
-#include "plumetrace/experiment/stats.hpp"
-#include "plumetrace/experiment/store.hpp"
 #include "progress.hpp"
 #include "validators.hpp"
 

@@ -13,19 +13,19 @@
 #include <vector>
 
 #include "campaigns.hpp"
-#include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
 #include "plumetrace/sim/probe.hpp"
 #include "plumetrace/sim/scenario.hpp"
-#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/sim/trace.hpp"
-#include "plumetrace/view/viewer.hpp"
 #include "plumetrace/sim/world.hpp"
+#include "plumetrace/view/viewer.hpp"
 #include "validators.hpp"
 
 namespace pt = plumetrace;

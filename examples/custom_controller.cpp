@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/sim/world.hpp"
 
 namespace pt = plumetrace;

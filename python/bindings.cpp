@@ -7,10 +7,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <functional>
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -18,22 +18,22 @@
 #include <vector>
 
 #include "lochmatter2008/calibration.hpp"
-#include "plumetrace/experiment/campaign.hpp"
 #include "lochmatter2008/claims.hpp"
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
 #include "plumetrace/sim/scenario.hpp"
-#include "plumetrace/experiment/stats.hpp"
-#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/sim/trace.hpp"
-#include "plumetrace/view/viewer.hpp"
 #include "plumetrace/sim/world.hpp"
+#include "plumetrace/view/viewer.hpp"
 
 namespace py = pybind11;
 namespace pt = plumetrace;

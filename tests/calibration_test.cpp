@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "plumetrace/experiment/campaign.hpp"
+#include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "lochmatter2008/summary.hpp"
-#include "plumetrace/experiment/store.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {

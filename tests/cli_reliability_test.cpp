@@ -62,10 +62,10 @@ TEST(CliReliability, OutOfMemoryIsReportedWithExitThreeNotAnAbort) {
 // F3 with F2: out of memory in a sweep's worker thread reaches main's catch-all through the pool
 TEST(CliReliability, OutOfMemoryInASweepWorkerIsExitThreeNotAnAbort) {
   SKIP_UNDER_ADDRESS_LIMIT();
-  const std::string sweep = testing::write_temp(
-      "sweep", ".toml",
-      "name = \"oom\"\nruns = 1\n[set]\nplume.capacity = 10000000\n"
-      "[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
+  const std::string sweep =
+      testing::write_temp("sweep", ".toml",
+                          "name = \"oom\"\nruns = 1\n[set]\nplume.capacity = 10000000\n"
+                          "[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
   const std::string store = testing::temp_path("oom", ".sqlite");
   const Output o = cli_limited("-v 300000", "sweep " + sweep + " --quiet --threads 1 --store " +
                                                 store + " --out " + store + ".out");

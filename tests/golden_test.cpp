@@ -6,15 +6,15 @@
 #include <sstream>
 #include <string>
 
-#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/store.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "plumetrace/experiment/store.hpp"
-#include "plumetrace/experiment/sweep.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {

@@ -1,18 +1,17 @@
 // Files the library writes: whole or not at all (written as PATH.part, renamed over PATH).
 
-#include "plumetrace/core/errors.hpp"
-#include "plumetrace/core/files.hpp"
-#include "plumetrace/io/results_io.hpp"
-#include "plumetrace/io/scenario_io.hpp"
-#include "plumetrace/io/sweep_file.hpp"
-#include "plumetrace/io/trace_io.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <string>
 
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/trace_io.hpp"
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
 

@@ -1,5 +1,3 @@
-#include "plumetrace/env/filament_plume.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,11 +5,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "plumetrace/core/geometry.hpp"
-#include "plumetrace/sim/scenario.hpp"
-#include "plumetrace/env/wind.hpp"
 #include "env/plume_loops.hpp"
 #include "env/vector_math.hpp"
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/env/wind.hpp"
+#include "plumetrace/sim/scenario.hpp"
 
 namespace plumetrace {
 namespace {
@@ -491,12 +490,9 @@ namespace plumetrace {
 namespace {
 
 // The scalar formulas of the plume's loops, one filament at a time and never vectorised.
-[[gnu::optimize("no-tree-vectorize")]] void scalar_step(std::vector<double>& x,
-                                                        std::vector<double>& y,
-                                                        std::vector<double>& z,
-                                                        std::vector<double>& w,
-                                                        const Vec3& d, std::uint64_t key,
-                                                        double stddev, double gamma) {
+[[gnu::optimize("no-tree-vectorize")]] void scalar_step(
+    std::vector<double>& x, std::vector<double>& y, std::vector<double>& z, std::vector<double>& w,
+    const Vec3& d, std::uint64_t key, double stddev, double gamma) {
   const auto n = static_cast<std::int64_t>(x.size());
   const auto normals = [key](std::int64_t counter) {
     float a, b;

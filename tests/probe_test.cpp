@@ -68,9 +68,8 @@ TEST(Probe, DefaultPlumeIsANarrowIntermittentBandEndingNearTheRobotStart) {
   ASSERT_EQ(results.size(), points.size());
   for (const ProbeResult& r : results) {
     EXPECT_EQ(r.samples, 100);
-    const std::string where = "x " + std::to_string(r.point.x) + " y " +
-                              std::to_string(r.point.y) + " mean " +
-                              std::to_string(r.mean_concentration);
+    const std::string where = "x " + std::to_string(r.point.x) + " y " + std::to_string(r.point.y) +
+                              " mean " + std::to_string(r.mean_concentration);
     if (r.point.y != 0.0) {
       // a single filament of amount 1 is below threshold: nothing 0.45 m off the axis
       EXPECT_LE(r.detect_fraction, 0.05) << where;

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/core/geometry.hpp"
 
 namespace plumetrace {
 namespace {

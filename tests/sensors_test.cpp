@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/agent/measurement.hpp"
-#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {

@@ -6,14 +6,14 @@
 #include <map>
 #include <set>
 
-#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "plumetrace/experiment/store.hpp"
 #include "support/rows.hpp"
 #include "support/temp_path.hpp"
 

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <thread>
 
-#include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/experiment/store.hpp"
+#include "plumetrace/sim/scenario.hpp"
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
 

@@ -12,8 +12,8 @@
 #include <optional>
 #include <thread>
 
-#include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/distributed/distributed.hpp"
 
 namespace plumetrace {
 

@@ -1,7 +1,8 @@
 #include "plumetrace/io/json_util.hpp"
 
-#include "plumetrace/core/files.hpp"
 #include <cmath>
+
+#include "plumetrace/core/files.hpp"
 
 namespace plumetrace::detail {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/agent/sensors.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {

@@ -1,7 +1,5 @@
 #include "plumetrace/view/viewer.hpp"
 
-#include "plumetrace/core/files.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,8 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "plumetrace/io/json_util.hpp"
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/env/wind.hpp"
+#include "plumetrace/io/json_util.hpp"
 #include "view_data.hpp"
 
 namespace plumetrace {

@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <tuple>
 
-#include "plumetrace/experiment/campaign.hpp"
+#include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "lochmatter2008/summary.hpp"
 
 namespace plumetrace {
 

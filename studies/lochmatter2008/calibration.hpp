@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "lochmatter2008/claims.hpp"
-#include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/sim/scenario.hpp"
 
 namespace plumetrace {
 

@@ -12,16 +12,16 @@
 #include <system_error>
 #include <thread>
 
-#include "plumetrace/io/json_util.hpp"
-#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/io/json_util.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
 #include "plumetrace/sim/probe.hpp"
-#include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/sim/trace.hpp"
 
 namespace plumetrace {

@@ -33,9 +33,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto again_path = pf::scratch() / "resolved.toml";
   pf::write_file(again_path, toml);
   try {
-    const std::string again = plumetrace::scenario_to_toml(plumetrace::load_scenario(again_path.string(), {}));
-    if (again != toml) pf::finding("the resolved scenario reads back differently:\n" + toml +
-                                   "\n--- read back as ---\n" + again);
+    const std::string again =
+        plumetrace::scenario_to_toml(plumetrace::load_scenario(again_path.string(), {}));
+    if (again != toml)
+      pf::finding("the resolved scenario reads back differently:\n" + toml +
+                  "\n--- read back as ---\n" + again);
   } catch (const std::exception& e) {
     pf::finding(std::string("the resolved scenario does not read back: ") + e.what() + "\n" + toml);
   }

@@ -20,12 +20,12 @@
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
 #include "plumetrace/sim/scenario.hpp"
-#include "plumetrace/experiment/store.hpp"
 
 namespace plumetrace::fuzz {
 

@@ -7,11 +7,11 @@
 #include "fuzz_support.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
-#include "plumetrace/experiment/sweep.hpp"
 
 namespace pf = plumetrace::fuzz;
 
@@ -29,9 +29,9 @@ std::filesystem::path sweep_folder() {
     std::filesystem::create_directories(root / "scenarios");
     std::filesystem::create_directories(root / "experiments" / "set");
     for (const char* name : {"lochmatter2008.toml", "paper-literal.toml"}) {
-      std::filesystem::copy_file(
-          std::filesystem::path(PLUMETRACE_SOURCE_DIR) / "scenarios" / name,
-          root / "scenarios" / name, std::filesystem::copy_options::overwrite_existing);
+      std::filesystem::copy_file(std::filesystem::path(PLUMETRACE_SOURCE_DIR) / "scenarios" / name,
+                                 root / "scenarios" / name,
+                                 std::filesystem::copy_options::overwrite_existing);
     }
     return root / "experiments" / "set";
   }();

@@ -2,8 +2,8 @@
 
 #include <string_view>
 
-#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {

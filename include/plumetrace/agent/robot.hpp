@@ -1,7 +1,7 @@
 #pragma once
 
-#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/core/geometry.hpp"
 
 namespace plumetrace {
 

@@ -1,9 +1,9 @@
 #pragma once
 
-#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/agent/measurement.hpp"
-#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {

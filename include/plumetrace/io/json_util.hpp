@@ -2,7 +2,6 @@
 // JSON and CSV building blocks of the io formats, shared with the studies' summaries.
 
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <string_view>
 

@@ -8,11 +8,11 @@
 #include <variant>
 #include <vector>
 
-#include "plumetrace/core/errors.hpp"
 #include "plumetrace/agent/controllers.hpp"
-#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/agent/robot.hpp"
 #include "plumetrace/agent/sensors.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {

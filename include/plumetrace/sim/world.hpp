@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "plumetrace/agent/controller.hpp"
-#include "plumetrace/sim/result.hpp"
-#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/agent/robot.hpp"
-#include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/agent/sensors.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
+#include "plumetrace/sim/result.hpp"
+#include "plumetrace/sim/scenario.hpp"
 
 namespace plumetrace {
 

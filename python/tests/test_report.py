@@ -1,5 +1,6 @@
 """Tests for plumetrace.report: a report built from a small synthetic summary.json."""
 
+import html
 import json
 import math
 import os
@@ -16,6 +17,8 @@ PYTHON_DIR = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(PYTHON_DIR))
 
 from plumetrace import report  # noqa: E402
+from plumetrace.report import data, figures  # noqa: E402
+from plumetrace.studies.lochmatter2008 import report_sections  # noqa: E402
 
 SETS = [
     ("A", "casting", "casting.beta_deg", "upwind angle beta (deg)", [5, 15, 25, 35]),
@@ -241,7 +244,7 @@ def test_html_claims_table_shows_each_claim_with_its_coloured_verdict(built):
     css_class = {"holds": "holds", "does not hold": "fails", "unclear": "unclear"}
     for i, claim_text in enumerate(CLAIM_TEXTS):
         verdict = VERDICTS[i % 3]
-        assert report.html.escape(claim_text) in claims_html
+        assert html.escape(claim_text) in claims_html
         assert re.search(rf'<td class="verdict {css_class[verdict]}">[^<]*{verdict}</td>',
                          claims_html), verdict
         assert f"evidence {i + 1}: 12/20 vs 3/20" in claims_html
@@ -366,11 +369,28 @@ def test_malformed_sensitivity_names_that_file(tmp_path):
         report.build_report(tmp_path)
 
 
-def test_wilson_interval_matches_known_values():
-    lo, hi = report.wilson_interval(12, 50)
-    assert lo == pytest.approx(0.1430, abs=1e-4)
-    assert hi == pytest.approx(0.3741, abs=1e-4)
-    assert report.wilson_interval(0, 0) == (None, None)
+def test_a_failed_write_leaves_the_previous_file_whole(tmp_path, monkeypatch):
+    path = tmp_path / "report.md"
+    path.write_text("old", encoding="utf-8")
+
+    def fail(src, dst):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(data.os, "replace", fail)
+    with pytest.raises(OSError):
+        data.write_whole(path, "new")
+    assert path.read_text(encoding="utf-8") == "old"
+    assert list(tmp_path.iterdir()) == [path]
+
+
+def test_success_interval_is_the_one_the_summary_gives():
+    # why: the C++ writes every point's Wilson interval; the report shows it, never recomputes it
+    p = {"runs": 50, "successes": 12, "success_lo": 0.1430, "success_hi": 0.3741}
+    point = report.Point.from_json(p)
+    assert (point.rate_lo, point.rate_hi) == (0.1430, 0.3741)
+    assert data.fmt_rate(point) == "24% [14, 37]"
+    del p["success_lo"], p["success_hi"]
+    assert data.fmt_rate(report.Point.from_json(p)) == "24%"
 
 
 def test_title_says_what_was_done_and_the_report_opens_with_the_verdict(built):
@@ -427,7 +447,7 @@ def test_failure_sentence_follows_the_numbers():
 
 def test_failed_runs_are_shown_next_to_successful_ones(built):
     out, _ = built
-    panels = report._trajectory_panels(make_summary())
+    panels = report_sections._trajectory_panels(make_summary())
     assert [(a, k, t is not None) for a, k, t in panels] == [
         ("casting", "success", True), ("casting", "failure", False),
         ("surge-spiral", "success", True), ("surge-spiral", "failure", True),
@@ -483,13 +503,13 @@ def test_summary_with_a_bad_reading_names_its_path(tmp_path):
 
 
 def test_trajectory_axis_states_the_summary_wind():
-    assert report._wind_text({"wind": {"vx": 0.9, "vy": 0.0}}) == "(wind 0.9 m/s along +x)"
-    assert report._wind_text({"wind": {"vx": 1.0, "vy": 0.2}}) == "(wind 1, 0.2 m/s)"
-    assert report._wind_text({}) == "(wind along +x)"
+    assert figures._wind_text({"wind": {"vx": 0.9, "vy": 0.0}}) == "(wind 0.9 m/s along +x)"
+    assert figures._wind_text({"wind": {"vx": 1.0, "vy": 0.2}}) == "(wind 1, 0.2 m/s)"
+    assert figures._wind_text({}) == "(wind along +x)"
 
 
 def test_elapsed_line_says_how_many_runs_came_from_the_store():
-    assert "read from the results store" not in report._elapsed_text(
+    assert "read from the results store" not in data._elapsed_text(
         {"elapsed_s": 55.0, "computed_runs": 100, "total_runs": 100})
-    text = report._elapsed_text({"elapsed_s": 0.0, "computed_runs": 0, "total_runs": 20850})
+    text = data._elapsed_text({"elapsed_s": 0.0, "computed_runs": 0, "total_runs": 20850})
     assert "0 runs computed by this command" in text and "20850 read from the results store" in text

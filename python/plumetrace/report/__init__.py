@@ -1,0 +1,40 @@
+"""The reproduction report, built from a `plumetrace reproduce` output folder.
+
+    PYTHONPATH=python python3 -m plumetrace.report OUT_DIR
+
+reads OUT_DIR/summary.json (and OUT_DIR/sensitivity.json when it exists) and writes
+OUT_DIR/report.html (self-contained: every figure is embedded as a data URI), OUT_DIR/report.md
+and the figures it links, OUT_DIR/figures/*.png. The file formats are described in docs/report.md.
+
+data.py reads and checks the inputs, figures.py draws, page.py renders and writes; what the
+report says comes from plumetrace.studies.lochmatter2008.report_sections. Only the standard
+library, numpy and matplotlib (Agg) are used.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Union
+
+from .data import Point, ReportError, fmt_overhead, load_inputs
+from .page import REPO_ROOT, render_html, render_markdown, write_pages
+from plumetrace.studies.lochmatter2008.report_sections import (document, failure_sentence,
+                                                               report_title)
+
+__all__ = ["Point", "REPO_ROOT", "ReportError", "build_report", "failure_sentence",
+           "fmt_overhead", "render_html", "render_markdown", "report_title"]
+
+
+def build_report(out_dir: Union[str, Path]) -> list:
+    """Builds report.html, report.md and figures/*.png in out_dir; returns the written paths.
+
+    Raises ReportError (whose message names the file) if summary.json is missing or malformed,
+    or if sensitivity.json exists but is malformed.
+    """
+    out_dir = Path(out_dir)
+    summary, sens = load_inputs(out_dir)
+    fig_dir = out_dir / "figures"
+    fig_dir.mkdir(parents=True, exist_ok=True)
+    figures: list = []
+    title, intro, sections = document(out_dir, fig_dir, summary, sens, figures)
+    return write_pages(out_dir, title, intro, sections) + figures

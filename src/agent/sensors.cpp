@@ -2,14 +2,15 @@
 
 namespace plumetrace {
 
-double sense_concentration(const OdorSensorParams& params, const Plume& plume, const Pose& pose) {
-  return plume.concentration(odor_sensor_point(params, pose));
+double sense_concentration(const OdorSensorParams& params, const OdorField& odor,
+                           const Pose& pose) {
+  return odor.concentration(odor_sensor_point(params, pose));
 }
 
 Vec3 sense_wind_body(const WindSensorParams& params, const WindField& wind, const Pose& pose,
-                     double height, double t, Rng& rng) {
+                     double height, Rng& rng) {
   // true wind plus independent noise on each component, then into the robot frame (eqs. 6-7)
-  const Vec3 a = wind.velocity({pose.x, pose.y, height}, t);
+  const Vec3 a = wind.velocity({pose.x, pose.y, height});
   const double sigma = params.sigma_a * params.sigma_a_scale;
   // the mean of n samples of the same wind: the mean of n noise draws, x, y, z per sample
   // why: with n = 1 the means are the draws themselves, so the stream and values are as before
@@ -29,7 +30,7 @@ Vec3 sense_wind_body(const WindSensorParams& params, const WindField& wind, cons
 }
 
 Vec2 WindSensor::measure_wind_body() {
-  last_ = sense_wind_body(params_, wind_, pose_, height_, time_, rng_);
+  last_ = sense_wind_body(params_, wind_, pose_, height_, rng_);
   ++samples_;
   ++total_;
   return {last_.x, last_.y};

@@ -199,14 +199,9 @@ double kernel_value(const PlumeParams& params, double w, double d2) {
                                             : kernel_at<Kernel::kPrinted>(scale, cut2, h, d2);
 }
 
-Plume::Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
-             std::uint64_t seed)
-    : params_(params),
-      source_(source),
-      dt_(dt),
-      removal_x_(removal_x),
-      walk_std_(walk_stddev(params, dt)),
-      rng_(seed) {
+FilamentPlume::FilamentPlume(const PlumeParams& params, const SourceParams& source,
+                             double removal_x, std::uint64_t seed)
+    : params_(params), source_(source), removal_x_(removal_x), rng_(seed) {
   // why: reserve once so the step never allocates (a leave-arena plume may still grow past this)
   const std::size_t reserve = static_cast<std::size_t>(params.capacity);
   x_.reserve(reserve);
@@ -216,39 +211,47 @@ Plume::Plume(const PlumeParams& params, const SourceParams& source, double dt, d
   h_.reserve(reserve);
 }
 
-void Plume::step(const WindField& wind, double t) {
-  move(wind, t);
-  release();
+void FilamentPlume::step(const WindField& wind, double dt) {
+  move(wind, dt);
+  release(dt);
   update_bounds();
 }
 
-void Plume::update_bounds() {
+OdorSnapshot FilamentPlume::snapshot() const {
+  OdorSnapshot s;
+  s.kind = OdorSnapshotKind::kFilaments;
+  s.filaments = {x_, y_, z_, w_};
+  return s;
+}
+
+void FilamentPlume::update_bounds() {
   const std::size_t n = x_.size();
   bounds_.resize(4 * ((n + kBlock - 1) / kBlock));  // allocates only past the capacity
   block_boxes(x_.data(), y_.data(), n, kBlock, bounds_.data());
 }
 
-void Plume::move(const WindField& wind, double t) {
+void FilamentPlume::move(const WindField& wind, double dt) {
   const std::size_t n = x_.size();
   // advection by the wind (paper eq. 2, first term): one displacement for a uniform wind,
   // else each filament moved here by the wind at its position
   Vec3 drift{0.0, 0.0, 0.0};
   if (wind.uniform_in_space()) {
-    const Vec3 a = wind.velocity(source_.center, t);
-    drift = {a.x * dt_, a.y * dt_, a.z * dt_};
+    const Vec3 a = wind.velocity(source_.center);
+    drift = {a.x * dt, a.y * dt, a.z * dt};
   } else {
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 a = wind.velocity({x_[i], y_[i], z_[i]}, t);
-      x_[i] += a.x * dt_;
-      y_[i] += a.y * dt_;
-      z_[i] += a.z * dt_;
+      const Vec3 a = wind.velocity({x_[i], y_[i], z_[i]});
+      x_[i] += a.x * dt;
+      y_[i] += a.y * dt;
+      z_[i] += a.z * dt;
     }
   }
   // random walk (second term) and width growth (eq. 3); the walk's normals come from a
   // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
   const std::uint64_t key = rng_.next_u64();
   loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
-                         static_cast<std::int64_t>(n), drift, key, walk_std_, params_.gamma);
+                         static_cast<std::int64_t>(n), drift, key, walk_stddev(params_, dt),
+                         params_.gamma);
   if (params_.lifetime == Lifetime::kLeaveArena) {
     // stable compaction keeps the order, so sums stay reproducible
     std::size_t kept = 0;
@@ -269,9 +272,9 @@ void Plume::move(const WindField& wind, double t) {
   }
 }
 
-void Plume::release() {
+void FilamentPlume::release(double dt) {
   // why: deterministic release, the accumulated fraction is emitted whole (3 or 4 per step)
-  release_debt_ += params_.release_rate * dt_;
+  release_debt_ += params_.release_rate * dt;
   const auto count = static_cast<std::uint64_t>(std::floor(release_debt_ + 1e-9));
   release_debt_ -= static_cast<double>(count);
   for (std::uint64_t k = 0; k < count; ++k) {
@@ -291,7 +294,7 @@ void Plume::release() {
   }
 }
 
-Vec3 Plume::release_position() {
+Vec3 FilamentPlume::release_position() {
   // uniform in the ball or disc by rejection from the enclosing cube or square
   const double r = source_.radius;
   for (;;) {
@@ -305,7 +308,7 @@ Vec3 Plume::release_position() {
   }
 }
 
-void Plume::store(std::size_t i, const Vec3& p, double w) {
+void FilamentPlume::store(std::size_t i, const Vec3& p, double w) {
   x_[i] = p.x;
   y_[i] = p.y;
   z_[i] = p.z;
@@ -313,13 +316,13 @@ void Plume::store(std::size_t i, const Vec3& p, double w) {
   h_[i] = 1.0 / w;
 }
 
-double Plume::concentration(const Vec3& u) const { return sum_kernels(u, INFINITY); }
+double FilamentPlume::concentration(const Vec3& u) const { return sum_kernels(u, INFINITY); }
 
-bool Plume::reaches(const Vec3& u, double threshold) const {
+bool FilamentPlume::reaches(const Vec3& u, double threshold) const {
   return sum_kernels(u, threshold) >= threshold;
 }
 
-double Plume::sum_kernels(const Vec3& u, double stop_at) const {
+double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   // why: the sum is defined as kLanes partial sums, filament i going to sum i mod kLanes in
   // index order, added pairwise at the end; so its terms are computed in vector loops and the
   // result is the same bits at every vector width. Partial sums of non-negative terms never

@@ -109,34 +109,17 @@ std::string plume_key(const Scenario& scenario) {
 
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
                                   std::uint64_t trial, const ControllerFactory& factory) {
-  std::vector<RunResult> results;
-  if (scenarios.empty()) return results;
-  const Scenario& first = *scenarios.front();
-  const std::string key = plume_key(first);
-  std::vector<std::unique_ptr<Agent>> agents;
+  if (scenarios.empty()) return {};
+  const std::string key = plume_key(*scenarios.front());
   for (const Scenario* s : scenarios) {
     if (plume_key(*s) != key) {
       throw std::invalid_argument("run_shared: the scenarios do not share one plume");
     }
-    agents.push_back(
-        std::make_unique<Agent>(*s, seed, trial, make_run_controller(*s, seed, trial, factory)));
   }
-  const auto wind = make_wind_field(first.wind);
-  Plume plume = make_plume(first, seed, trial);
-  const double warmup_time = warm_up(first, *wind, plume);
-  for (auto& a : agents) a->release(plume, warmup_time);
-
-  // lockstep: one plume step, then every agent still running takes its step on it
-  std::size_t running = agents.size();
-  for (std::int64_t k = 0; running > 0; ++k) {
-    running = 0;
-    for (const auto& a : agents) running += !a->done();
-    if (running == 0) break;
-    plume.step(*wind, warmup_time + static_cast<double>(k) * first.sim.dt);
-    for (auto& a : agents) a->step(plume);
-  }
-  for (const auto& a : agents) results.push_back(a->result());
-  return results;
+  // one environment, every robot in it, in lockstep
+  World world(scenarios, seed, trial, factory);
+  while (!world.done()) world.step();
+  return world.results();
 }
 
 std::vector<TaskGroup> plume_groups(const std::vector<ExpandedSweep>& sweeps,

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "plumetrace/agent/sensors.hpp"
-#include "plumetrace/env/filament_plume.hpp"
-#include "plumetrace/env/wind.hpp"
+#include "plumetrace/env/environment.hpp"
+#include "plumetrace/sim/world.hpp"
 
 namespace plumetrace {
 
@@ -33,10 +33,8 @@ void check_probe_options(const ProbeOptions& options, const Scenario& scenario) 
 std::vector<ProbeResult> probe_plume(const Scenario& scenario, const std::vector<Vec3>& points,
                                      const ProbeOptions& options) {
   const double dt = scenario.sim.dt;
-  const auto wind = make_wind_field(scenario.wind);
-  Plume plume(scenario.plume, scenario.source, dt, scenario.arena.x_max,
-              derive_seed(options.seed, 0, Stream::kPlume));
   check_probe_options(options, scenario);
+  Environment env = make_environment(scenario, options.seed, 0);
   const long warmup_steps = std::lround(warmup_of(options, scenario) / dt);
   const long steps = std::lround(options.duration / dt);
   const long every = std::max(1L, std::lround(options.interval / dt));
@@ -44,11 +42,11 @@ std::vector<ProbeResult> probe_plume(const Scenario& scenario, const std::vector
   std::vector<ProbeResult> results(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) results[i].point = points[i];
   for (long k = 0; k < warmup_steps + steps; ++k) {
-    plume.step(*wind, static_cast<double>(k) * dt);
+    step(env, dt);
     const long since = k + 1 - warmup_steps;
     if (since <= 0 || since % every != 0) continue;
     for (auto& r : results) {
-      const double c = plume.concentration(r.point);
+      const double c = env.odor->concentration(r.point);
       r.mean_concentration += c;
       if (perceives_odor(scenario.odor, c)) r.detect_fraction += 1.0;
       ++r.samples;

@@ -36,14 +36,18 @@ void TraceRecorder::operator()(const World& world) {
   trace_.steps.push_back(std::move(row));
 
   if (snapshot_every_ > 0 && calls_ % snapshot_every_ == 0) {
-    const Plume& plume = world.plume();
-    FilamentSnapshot snap;
-    snap.time = world.time();
-    snap.x.assign(plume.x().begin(), plume.x().end());
-    snap.y.assign(plume.y().begin(), plume.y().end());
-    snap.z.assign(plume.z().begin(), plume.z().end());
-    snap.w.assign(plume.w().begin(), plume.w().end());
-    trace_.snapshots.push_back(std::move(snap));
+    const OdorSnapshot odor = world.environment().odor->snapshot();
+    // why: a trace holds filaments only; an odor model drawn otherwise leaves no snapshots
+    if (odor.kind == OdorSnapshotKind::kFilaments) {
+      const FilamentSpans& f = odor.filaments;
+      FilamentSnapshot snap;
+      snap.time = world.time();
+      snap.x.assign(f.x.begin(), f.x.end());
+      snap.y.assign(f.y.begin(), f.y.end());
+      snap.z.assign(f.z.begin(), f.z.end());
+      snap.w.assign(f.w.begin(), f.w.end());
+      trace_.snapshots.push_back(std::move(snap));
+    }
   }
   ++calls_;
 }

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "plumetrace/env/filament_plume.hpp"
+
 namespace plumetrace {
 
 Outcome supervise(const Scenario& scenario, const RobotState& robot, double t) {
@@ -24,37 +26,33 @@ Outcome supervise(const Scenario& scenario, const RobotState& robot, double t) {
 }
 
 Agent::Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
-             std::unique_ptr<Controller> controller)
+             std::unique_ptr<Controller> controller, const Environment& env)
     : scenario_(scenario),
       seed_(seed),
       trial_(trial),
-      wind_(make_wind_field(scenario.wind)),
+      env_(env),
       robot_{scenario.robot.start, 0.0},
       wind_rng_(derive_seed(seed, trial, Stream::kWindSensor)),
-      wind_sensor_(scenario_.wind_sensor, *wind_, robot_.pose, scenario_.odor.height, wind_rng_),
+      wind_sensor_(scenario_.wind_sensor, *env.wind, robot_.pose, scenario_.odor.height, wind_rng_),
       controller_(std::move(controller)) {}
 
-void Agent::release(const Plume& plume, double warmup_time) {
-  warmup_time_ = warmup_time;
+void Agent::release() {
   // what the sensor reads at release (for traces; the controller first senses after one step)
   sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
-  odor_ = sense_odor(scenario_.odor, plume, robot_.pose);
+  odor_ = sense_odor(scenario_.odor, *env_.odor, robot_.pose);
 }
 
-void Agent::step(const Plume& plume) {
-  if (done()) return;
-  const Observation obs = sense(plume);
-  // decide
-  act(controller_->step(obs, wind_sensor_));
+Command Agent::decide() {
+  const Observation obs = sense();
+  return controller_->step(obs, wind_sensor_);
 }
 
-Observation Agent::sense(const Plume& plume) {
+Observation Agent::sense() {
   ++steps_;
   sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
-  odor_ = sense_odor(scenario_.odor, plume, robot_.pose);
+  odor_ = sense_odor(scenario_.odor, *env_.odor, robot_.pose);
   if (odor_) ++odor_steps_;
   wind_sensor_.clear();
-  wind_sensor_.set_time(plume_time());
   // why: odometry starts at the release pose, so a controller cannot read the arena's frame
   return {time(), odor_, relative_pose(scenario_.robot.start, robot_.pose), robot_.odometer};
 }
@@ -99,17 +97,17 @@ RunResult Agent::result() const {
   return r;
 }
 
-Plume make_plume(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
-  return Plume(scenario.plume, scenario.source, scenario.sim.dt, scenario.arena.x_max,
-               derive_seed(seed, trial, Stream::kPlume));
+Environment make_environment(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
+  Environment env;
+  env.wind = make_wind_field(scenario.wind, Rng(derive_seed(seed, trial, Stream::kWind)));
+  env.odor = std::make_unique<FilamentPlume>(scenario.plume, scenario.source, scenario.arena.x_max,
+                                             derive_seed(seed, trial, Stream::kPlume));
+  return env;
 }
 
-double warm_up(const Scenario& scenario, const WindField& wind, Plume& plume) {
+void warm_up(const Scenario& scenario, Environment& env) {
   const auto steps = static_cast<std::int64_t>(std::llround(scenario.sim.warmup / scenario.sim.dt));
-  for (std::int64_t i = 0; i < steps; ++i) {
-    plume.step(wind, static_cast<double>(i) * scenario.sim.dt);
-  }
-  return static_cast<double>(steps) * scenario.sim.dt;
+  for (std::int64_t i = 0; i < steps; ++i) step(env, scenario.sim.dt);
 }
 
 std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::uint64_t seed,
@@ -119,28 +117,82 @@ std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::u
   return factory ? factory(scenario, rng) : make_controller(scenario.controller, rng);
 }
 
+namespace {
+
+const Scenario& first_of(const std::vector<const Scenario*>& scenarios) {
+  if (scenarios.empty()) throw std::invalid_argument("World: no scenario, so no agent");
+  return *scenarios.front();
+}
+
+}  // namespace
+
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial)
     : World(scenario, seed, trial, make_run_controller(scenario, seed, trial)) {}
 
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
              std::unique_ptr<Controller> controller)
-    : wind_(make_wind_field(scenario.wind)),
-      plume_(make_plume(scenario, seed, trial)),
-      agent_(scenario, seed, trial, std::move(controller)) {
-  agent_.release(plume_, warm_up(scenario, *wind_, plume_));
+    : World(scenario, seed, trial, std::move(controller), make_environment(scenario, seed, trial)) {
+}
+
+World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+             std::unique_ptr<Controller> controller, Environment env)
+    : env_(std::move(env)), dt_(scenario.sim.dt) {
+  add_agent(scenario, seed, trial, std::move(controller));
+  start(scenario);
+}
+
+World::World(const std::vector<const Scenario*>& scenarios, std::uint64_t seed, std::uint64_t trial,
+             const ControllerFactory& factory)
+    : env_(make_environment(first_of(scenarios), seed, trial)), dt_(first_of(scenarios).sim.dt) {
+  for (const Scenario* s : scenarios) {
+    add_agent(*s, seed, trial, make_run_controller(*s, seed, trial, factory));
+  }
+  start(*scenarios.front());
+}
+
+void World::add_agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                      std::unique_ptr<Controller> controller) {
+  agents_.push_back(std::make_unique<Agent>(scenario, seed, trial, std::move(controller), env_));
+}
+
+void World::start(const Scenario& scenario) {
+  warm_up(scenario, env_);
+  for (const auto& a : agents_) a->release();
+  commands_.resize(agents_.size());
 }
 
 void World::step() {
   if (done()) return;
-  // environment: filaments move, then new ones are released
-  plume_.step(*wind_, agent_.plume_time());
-  // the robot: sense, decide, move, check
-  agent_.step(plume_);
+  // environment: the wind, then the filaments move in it and new ones are released
+  plumetrace::step(env_, dt_);
+  // every running robot senses and decides, then every one moves and is checked; robots do not
+  // see each other, so each takes exactly the step it would take alone
+  const std::size_t n = agents_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!agents_[i]->done()) commands_[i] = agents_[i]->decide();
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!agents_[i]->done()) agents_[i]->act(commands_[i]);
+  }
 }
 
 Observation World::observe() {
-  plume_.step(*wind_, agent_.plume_time());
-  return agent_.sense(plume_);
+  plumetrace::step(env_, dt_);
+  return agents_.front()->sense();
+}
+
+bool World::done() const {
+  for (const auto& a : agents_) {
+    if (!a->done()) return false;
+  }
+  return true;
+}
+
+std::vector<RunResult> World::results() const {
+  std::vector<RunResult> out;
+  out.reserve(agents_.size());
+  for (const auto& a : agents_) out.push_back(a->result());
+  return out;
 }
 
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,

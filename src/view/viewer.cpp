@@ -187,15 +187,26 @@ struct WindSample {
   Vec2 measured, truth;
 };
 
+// the true wind where the robot sampled it, as the trace recorded it. why: read from the trace's
+// scenario, not from a wind field rebuilt here (a second copy of the run's wind); the one model,
+// constant, blows its recorded velocity everywhere and always. A wind model that varies must
+// record its truth in the trace, and the switch (-Wswitch) names this place when one is added.
+Vec3 recorded_true_wind(const WindParams& wind) {
+  switch (wind.model) {
+    case WindModel::kConstant:
+      return wind.velocity;
+  }
+  return {NAN, NAN, NAN};
+}
+
 std::vector<WindSample> wind_samples(const RecordedRun& run) {
-  const auto field = make_wind_field(run.scenario.wind);
+  const Vec3 v = recorded_true_wind(run.scenario.wind);
   std::vector<WindSample> out;
   for (const auto& s : run.trace.steps) {
     if (s.wind_samples <= 0) continue;
     const double c = std::cos(s.pose.heading), sn = std::sin(s.pose.heading);
     const Vec2 measured{c * s.wind_body.x - sn * s.wind_body.y,
                         sn * s.wind_body.x + c * s.wind_body.y};
-    const Vec3 v = field->velocity({s.pose.x, s.pose.y, run.scenario.odor.height}, s.time);
     out.push_back({s.time, s.pose.x, s.pose.y, measured, {v.x, v.y}});
   }
   return out;

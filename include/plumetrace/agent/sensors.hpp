@@ -3,7 +3,7 @@
 #include "plumetrace/agent/measurement.hpp"
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
-#include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/env/odor.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {
@@ -34,11 +34,11 @@ inline Vec3 odor_sensor_point(const OdorSensorParams& params, const Pose& pose) 
 }
 
 /// Concentration at the odor sensor of a robot at `pose` (a point sample, no noise).
-double sense_concentration(const OdorSensorParams& params, const Plume& plume, const Pose& pose);
+double sense_concentration(const OdorSensorParams& params, const OdorField& odor, const Pose& pose);
 
 /// Binary odor at the sensor of a robot at `pose`: the concentration reaches the threshold.
-inline bool sense_odor(const OdorSensorParams& params, const Plume& plume, const Pose& pose) {
-  return plume.reaches(odor_sensor_point(params, pose), params.threshold);
+inline bool sense_odor(const OdorSensorParams& params, const OdorField& odor, const Pose& pose) {
+  return odor.reaches(odor_sensor_point(params, pose), params.threshold);
 }
 
 /// Binary odor: the concentration reaches the threshold.
@@ -46,21 +46,20 @@ inline bool perceives_odor(const OdorSensorParams& params, double concentration)
   return concentration >= params.threshold;
 }
 
-/// A noisy wind measurement at `pose` and time t (the mean of params.samples samples), rotated
-/// into the robot frame (3-D, m/s).
+/// A noisy wind measurement at `pose` in the wind as it is now (the mean of params.samples
+/// samples), rotated into the robot frame (3-D, m/s).
 Vec3 sense_wind_body(const WindSensorParams& params, const WindField& wind, const Pose& pose,
-                     double height, double t, Rng& rng);
+                     double height, Rng& rng);
 
 /// The wind sensor bound to the true world, as a controller sees it; records its samples.
 class WindSensor final : public WindProbe {
  public:
-  /// Binds the sensor to the wind field, the robot pose it reads, and its random stream.
+  /// Binds the sensor to the wind field (the environment's own, which the plume moves in), the
+  /// robot pose it reads, and its random stream.
   WindSensor(const WindSensorParams& params, const WindField& wind, const Pose& pose, double height,
              Rng& rng)
       : params_(params), wind_(wind), pose_(pose), height_(height), rng_(rng) {}
 
-  /// Sets the time of the next samples (s).
-  void set_time(double t) { time_ = t; }
   Vec2 measure_wind_body() override;
   /// Samples taken since the last clear (for traces).
   int samples() const { return samples_; }
@@ -77,7 +76,6 @@ class WindSensor final : public WindProbe {
   const Pose& pose_;
   double height_;
   Rng& rng_;
-  double time_ = 0.0;
   int samples_ = 0;
   long total_ = 0;
   Vec3 last_;

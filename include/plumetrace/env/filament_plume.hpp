@@ -6,30 +6,34 @@
 
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
+#include "plumetrace/env/odor.hpp"
 #include "plumetrace/env/plume_params.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {
 
-/// The filament plume: positions and widths as arrays, advanced one dt at a time.
-class Plume {
+/// The filament plume (docs/model.md section 4): positions and widths as arrays, advanced one dt
+/// at a time.
+class FilamentPlume final : public OdorField {
  public:
   /// Filaments per block of the concentration query.
   static constexpr std::size_t kBlock = 64;
 
   /// Creates an empty plume; filaments at x > removal_x leave under Lifetime::kLeaveArena.
-  Plume(const PlumeParams& params, const SourceParams& source, double dt, double removal_x,
-        std::uint64_t seed);
+  FilamentPlume(const PlumeParams& params, const SourceParams& source, double removal_x,
+                std::uint64_t seed);
 
-  /// One step: move existing filaments (wind at time t plus random walk, width growth), then
+  /// One step of dt (s): move existing filaments (the wind plus random walk, width growth), then
   /// release new ones.
-  void step(const WindField& wind, double t);
+  void step(const WindField& wind, double dt) override;
 
   /// Odor concentration at point u (paper eq. 4).
-  double concentration(const Vec3& u) const;
+  double concentration(const Vec3& u) const override;
   /// Whether the concentration at u reaches `threshold`; the same answer as
   /// concentration(u) >= threshold, found sooner (the sum stops once it gets there).
-  bool reaches(const Vec3& u, double threshold) const;
+  bool reaches(const Vec3& u, double threshold) const override;
+  /// The filaments' arrays.
+  OdorSnapshot snapshot() const override;
 
   /// Number of live filaments.
   std::size_t size() const { return x_.size(); }
@@ -47,8 +51,8 @@ class Plume {
   const PlumeParams& params() const { return params_; }
 
  private:
-  void move(const WindField& wind, double t);
-  void release();
+  void move(const WindField& wind, double dt);
+  void release(double dt);
   Vec3 release_position();
   void store(std::size_t i, const Vec3& p, double w);
   double sum_kernels(const Vec3& u, double stop_at) const;
@@ -56,9 +60,7 @@ class Plume {
 
   PlumeParams params_;
   SourceParams source_;
-  double dt_;
   double removal_x_;
-  double walk_std_;
   Rng rng_;
   double release_debt_ = 0.0;
   std::uint64_t released_ = 0;

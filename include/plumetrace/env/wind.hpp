@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
 
@@ -18,12 +19,16 @@ struct WindParams {
   Vec3 velocity{0.9, 0.0, 0.0};
 };
 
-/// A wind field: answers "what is the air velocity at point p and time t".
+/// A wind field: the air velocity at every point, now. The field carries its own state and time
+/// and advances through step(), so every reader (the plume, each wind sensor) of one field sees
+/// the same air.
 class WindField {
  public:
   virtual ~WindField() = default;
-  /// Air velocity (m/s) at point p (m) and time t (s).
-  virtual Vec3 velocity(const Vec3& p, double t) const = 0;
+  /// Advances the field by dt (s).
+  virtual void step(double dt) = 0;
+  /// Air velocity (m/s) at point p (m), at the field's current time.
+  virtual Vec3 velocity(const Vec3& p) const = 0;
   /// True when the velocity is the same at every point (lets the plume query it once per step).
   virtual bool uniform_in_space() const { return false; }
 };
@@ -33,14 +38,17 @@ class ConstantWind final : public WindField {
  public:
   /// Builds the field from its velocity (m/s).
   explicit ConstantWind(const Vec3& velocity) : velocity_(velocity) {}
-  Vec3 velocity(const Vec3&, double) const override { return velocity_; }
+  /// Nothing changes.
+  void step(double) override {}
+  Vec3 velocity(const Vec3&) const override { return velocity_; }
   bool uniform_in_space() const override { return true; }
 
  private:
   Vec3 velocity_;
 };
 
-/// Builds the wind field a scenario asks for.
-std::unique_ptr<WindField> make_wind_field(const WindParams& params);
+/// Builds the wind field a scenario asks for; `rng` is its own random stream (Stream::kWind),
+/// which a constant wind never draws from.
+std::unique_ptr<WindField> make_wind_field(const WindParams& params, Rng rng);
 
 }  // namespace plumetrace

@@ -98,9 +98,9 @@ std::string hash_text(const std::string& text);
 /// this key and whose (seed, trial) match meet bit for bit the same plume).
 std::string plume_key(const Scenario& scenario);
 
-/// Runs several agents on one shared plume (docs/model.md section 10: the plume does not depend
-/// on the robot); every scenario must have the same plume_key. The results equal run_once of
-/// each scenario, bit for bit.
+/// Runs several agents in one shared environment, a World of one agent per scenario
+/// (docs/model.md section 10: the plume does not depend on the robot); every scenario must have
+/// the same plume_key. The results equal run_once of each scenario, bit for bit.
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
                                   std::uint64_t trial, const ControllerFactory& factory = {});
 

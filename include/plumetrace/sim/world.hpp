@@ -10,8 +10,7 @@
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/agent/robot.hpp"
 #include "plumetrace/agent/sensors.hpp"
-#include "plumetrace/env/filament_plume.hpp"
-#include "plumetrace/env/wind.hpp"
+#include "plumetrace/env/environment.hpp"
 #include "plumetrace/sim/result.hpp"
 #include "plumetrace/sim/scenario.hpp"
 
@@ -20,31 +19,31 @@ namespace plumetrace {
 /// The supervisor's verdict on a robot state at run time t (s): success, wall, timeout or running.
 Outcome supervise(const Scenario& scenario, const RobotState& robot, double t);
 
-/// The robot side of one run: robot, sensors, controller and metrics, driven by a plume that
-/// is stepped outside it. Robots do not disturb the plume, so several Agents can share one.
+/// The robot side of one run: robot, sensors, controller and metrics, in an environment that
+/// is stepped outside it. Its sensors read that environment's own wind and odor objects; robots
+/// do not disturb the environment, so several Agents can share one.
 class Agent {
  public:
-  /// An agent of the scenario with its random streams from (seed, trial), at its start pose.
+  /// An agent of the scenario with its random streams from (seed, trial), at its start pose, its
+  /// sensors bound to `env` (which must outlive it).
   Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
-        std::unique_ptr<Controller> controller);
+        std::unique_ptr<Controller> controller, const Environment& env);
   Agent(const Agent&) = delete;
   Agent& operator=(const Agent&) = delete;
 
-  /// Releases the robot into a plume warmed up for `warmup_time` seconds.
-  void release(const Plume& plume, double warmup_time);
-  /// One step after the plume has made its own: sense, decide, move, check (docs/model.md
-  /// section 2).
-  void step(const Plume& plume);
-  /// The first half of a step, for callers that decide outside a Controller (learning agents):
-  /// sense and return what a controller would see. Follow with act().
-  Observation sense(const Plume& plume);
+  /// Releases the robot into the environment as it is now (after the warm-up).
+  void release();
+  /// The first half of a step, after the environment has made its own: sense, then the
+  /// controller's decision. Follow with act().
+  Command decide();
+  /// Sensing alone, for callers that decide outside a Controller (learning agents): what a
+  /// controller would see. Follow with act().
+  Observation sense();
   /// The second half of a step: the decision (headings in the odometry frame), then move and
   /// check.
   void act(Command command);
   /// The wind sensor, for a decision made outside a Controller (one noisy sample per call).
   WindProbe& wind_probe() { return wind_sensor_; }
-  /// Plume time (s) at which the plume's next step starts.
-  double plume_time() const { return warmup_time_ + time(); }
 
   /// True once the run has ended.
   bool done() const { return outcome_ != Outcome::kRunning; }
@@ -71,12 +70,11 @@ class Agent {
   Scenario scenario_;
   std::uint64_t seed_;
   std::uint64_t trial_;
-  std::unique_ptr<WindField> wind_;
+  const Environment& env_;
   RobotState robot_;
   Rng wind_rng_;
   WindSensor wind_sensor_;
   std::unique_ptr<Controller> controller_;
-  double warmup_time_ = 0.0;
   std::int64_t steps_ = 0;
   std::int64_t odor_steps_ = 0;
   Vec3 sensed_at_;
@@ -94,14 +92,16 @@ std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::u
                                                 std::uint64_t trial,
                                                 const ControllerFactory& factory = {});
 
-/// The plume of a scenario and trial, before its warm-up.
-Plume make_plume(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
+/// The environment of a scenario and trial (its wind and its filament plume, each with its own
+/// random stream), before its warm-up.
+Environment make_environment(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
 
-/// Runs a plume alone for the scenario's warm-up; returns the warm-up time (s).
-double warm_up(const Scenario& scenario, const WindField& wind, Plume& plume);
+/// Runs an environment alone for the scenario's warm-up (sim.warmup, in steps of sim.dt).
+void warm_up(const Scenario& scenario, Environment& env);
 
-/// One run's whole state: a plume and one agent. A fresh World per run; it is neither copied
-/// nor moved.
+/// One run's whole state: one environment and the agents in it (one for a run, several for
+/// robots that share a plume). A fresh World per run; it is neither copied nor moved, because
+/// its agents' sensors hold references into it.
 class World {
  public:
   /// A run of the scenario's algorithm, warmed up and ready for its first step; random streams
@@ -110,47 +110,68 @@ class World {
   /// A run driven by a given controller (the extension point for custom algorithms), warmed up.
   World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
         std::unique_ptr<Controller> controller);
+  /// A run in a given environment (the extension point for other wind or odor models), warmed
+  /// up for the scenario's sim.warmup.
+  World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+        std::unique_ptr<Controller> controller, Environment env);
+  /// One agent per scenario in one environment, the first scenario's, warmed up; the scenarios
+  /// must agree on everything the environment depends on (`plume_key`, sweep.hpp). Each agent
+  /// takes exactly the steps it would take alone.
+  World(const std::vector<const Scenario*>& scenarios, std::uint64_t seed, std::uint64_t trial,
+        const ControllerFactory& factory = {});
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
-  /// One step: environment, sense, decide, move, check (docs/model.md section 2).
+  /// One step (docs/model.md section 2): the environment, then every running agent senses and
+  /// decides, then every one moves and is checked. Does nothing once every agent is done.
   void step();
-  /// A step split for a decision made outside the controller: environment and sense ...
+  /// A step of a one-agent world split for a decision made outside the controller: the
+  /// environment and sensing ...
   Observation observe();
   /// ... then the decision, move and check (see Agent::sense, Agent::act).
-  void act(const Command& command) { agent_.act(command); }
-  /// The wind sensor, for a decision made outside the controller.
-  WindProbe& wind_probe() { return agent_.wind_probe(); }
-  /// True once the run has ended.
-  bool done() const { return agent_.done(); }
-  /// The run's metrics so far.
-  RunResult result() const { return agent_.result(); }
+  void act(const Command& command) { agents_.front()->act(command); }
+  /// The wind sensor of agent 0, for a decision made outside the controller.
+  WindProbe& wind_probe() { return agents_.front()->wind_probe(); }
+  /// True once every agent's run has ended.
+  bool done() const;
+  /// Agent 0's metrics so far.
+  RunResult result() const { return agents_.front()->result(); }
+  /// Every agent's metrics so far, in the order of the scenarios.
+  std::vector<RunResult> results() const;
 
-  /// Time since release (s).
-  double time() const { return agent_.time(); }
-  /// The scenario in use.
-  const Scenario& scenario() const { return agent_.scenario(); }
-  /// The plume.
-  const Plume& plume() const { return plume_; }
-  /// The wind field.
-  const WindField& wind() const { return *wind_; }
-  /// The robot's true state.
-  const RobotState& robot() const { return agent_.robot(); }
-  /// The controller.
-  const Controller& controller() const { return agent_.controller(); }
-  /// The wind sensor (samples taken this step).
-  const WindSensor& wind_sensor() const { return agent_.wind_sensor(); }
-  /// Odor perceived at the last step.
-  bool odor() const { return agent_.odor(); }
-  /// Concentration at the odor sensor at the last step (computed on demand, for traces).
-  double concentration() const { return plume_.concentration(agent_.sensed_at()); }
-  /// How the run ended (kRunning while it goes on).
-  Outcome outcome() const { return agent_.outcome(); }
+  /// The number of agents.
+  std::size_t agent_count() const { return agents_.size(); }
+  /// Agent i.
+  const Agent& agent(std::size_t i) const { return *agents_.at(i); }
+  /// The environment.
+  const Environment& environment() const { return env_; }
+
+  /// Agent 0's time since release (s).
+  double time() const { return agents_.front()->time(); }
+  /// Agent 0's scenario.
+  const Scenario& scenario() const { return agents_.front()->scenario(); }
+  /// Agent 0's robot's true state.
+  const RobotState& robot() const { return agents_.front()->robot(); }
+  /// Agent 0's controller.
+  const Controller& controller() const { return agents_.front()->controller(); }
+  /// Agent 0's wind sensor (samples taken this step).
+  const WindSensor& wind_sensor() const { return agents_.front()->wind_sensor(); }
+  /// Odor perceived by agent 0 at the last step.
+  bool odor() const { return agents_.front()->odor(); }
+  /// Concentration at agent 0's odor sensor at the last step (computed on demand, for traces).
+  double concentration() const { return env_.odor->concentration(agents_.front()->sensed_at()); }
+  /// How agent 0's run ended (kRunning while it goes on).
+  Outcome outcome() const { return agents_.front()->outcome(); }
 
  private:
-  std::unique_ptr<WindField> wind_;
-  Plume plume_;
-  Agent agent_;
+  void add_agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                 std::unique_ptr<Controller> controller);
+  void start(const Scenario& scenario);
+
+  Environment env_;
+  double dt_;
+  std::vector<std::unique_ptr<Agent>> agents_;
+  std::vector<Command> commands_;  // this step's decisions, one per agent
 };
 
 /// Called after the warm-up and after every step of a run.

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "env/plume_loops.hpp"
 #include "env/vector_math.hpp"
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/env/environment.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 #include "plumetrace/sim/scenario.hpp"
@@ -68,14 +70,14 @@ TEST(Plume, ZeroNoiseAdvectionIsExact) {
   const ConstantWind wind(a);
   PlumeParams params = noiseless(plume_preset(PlumePreset::kLochmatter2008));
   params.capacity = 100000;  // no overwrites: index i is the i-th filament released
-  Plume plume(params, SourceParams{}, kDt, 16.0, 11);
+  FilamentPlume plume(params, SourceParams{}, 16.0, 11);
 
   // record each filament's release position and release step
   std::vector<Vec3> released;
   std::vector<int> step_of;
   const int n = 300;
   for (int k = 1; k <= n; ++k) {
-    plume.step(wind, (k - 1) * kDt);
+    plume.step(wind, kDt);
     for (std::size_t i = released.size(); i < plume.size(); ++i) {
       released.push_back({plume.x()[i], plume.y()[i], plume.z()[i]});
       step_of.push_back(k);
@@ -96,12 +98,12 @@ TEST(Plume, ZeroNoiseAlongWindMovesOnlyDownwind) {
   const ConstantWind wind({1.0, 0.0, 0.0});
   PlumeParams params = noiseless(PlumeParams{});
   params.capacity = 100000;
-  Plume plume(params, SourceParams{}, kDt, 16.0, 5);
+  FilamentPlume plume(params, SourceParams{}, 16.0, 5);
   std::vector<Vec3> released;
   std::vector<int> step_of;
   const int n = 200;
   for (int k = 1; k <= n; ++k) {
-    plume.step(wind, (k - 1) * kDt);
+    plume.step(wind, kDt);
     for (std::size_t i = released.size(); i < plume.size(); ++i) {
       released.push_back({plume.x()[i], plume.y()[i], plume.z()[i]});
       step_of.push_back(k);
@@ -118,14 +120,14 @@ TEST(Plume, ZeroNoiseAlongWindMovesOnlyDownwind) {
 std::vector<double> walk_increments(const PlumeParams& params, const Vec3& a) {
   const ConstantWind wind(a);
   // why: no filament may be overwritten or removed between the copy and the step
-  Plume plume(params, SourceParams{}, kDt, 1e12, 2024);
-  for (int k = 0; k < 200; ++k) plume.step(wind, k * kDt);
+  FilamentPlume plume(params, SourceParams{}, 1e12, 2024);
+  for (int k = 0; k < 200; ++k) plume.step(wind, kDt);
   std::vector<double> d;
   for (int k = 200; k < 300; ++k) {
     const std::vector<double> x(plume.x().begin(), plume.x().end());
     const std::vector<double> y(plume.y().begin(), plume.y().end());
     const std::vector<double> z(plume.z().begin(), plume.z().end());
-    plume.step(wind, k * kDt);
+    plume.step(wind, kDt);
     for (std::size_t i = 0; i < x.size(); ++i) {
       d.push_back(plume.x()[i] - x[i] - a.x * kDt);
       d.push_back(plume.y()[i] - y[i] - a.y * kDt);
@@ -166,12 +168,12 @@ TEST(Plume, WidthFollowsGrowthRecurrence) {
     PlumeParams params;
     params.gamma = gamma;
     params.capacity = 100000;
-    Plume plume(params, SourceParams{}, kDt, 16.0, 3);
-    plume.step(wind, 0.0);  // releases filaments 0..2 with w0
+    FilamentPlume plume(params, SourceParams{}, 16.0, 3);
+    plume.step(wind, kDt);  // releases filaments 0..2 with w0
     const int n = 500;
     double w = params.initial_width;
     for (int k = 1; k <= n; ++k) {
-      plume.step(wind, k * kDt);
+      plume.step(wind, kDt);
       w += (gamma / 2.0) * (1.0 / w);  // gamma / (2 w), as the plume computes it
       EXPECT_EQ(plume.w()[0], w) << "gamma " << gamma << " step " << k;
     }
@@ -188,10 +190,10 @@ TEST(Plume, ReleasesThreeOrFourPerStepAndExactlyHundredPerSecond) {
   const ConstantWind wind({1.0, 0.0, 0.0});
   PlumeParams params;
   params.capacity = 16;  // storage is irrelevant to the count
-  Plume plume(params, SourceParams{}, kDt, 16.0, 9);
+  FilamentPlume plume(params, SourceParams{}, 16.0, 9);
   std::uint64_t before = 0;
   for (std::int64_t n = 1; n <= 20000; ++n) {
-    plume.step(wind, (n - 1) * kDt);
+    plume.step(wind, kDt);
     const std::uint64_t now = plume.released();
     EXPECT_TRUE(now - before == 3 || now - before == 4) << "step " << n;
     ASSERT_EQ(static_cast<std::int64_t>(now), released_after(n)) << "step " << n;
@@ -214,10 +216,10 @@ std::vector<Vec3> release_offsets(const PlumeParams& params, const SourceParams&
   p.lifetime = Lifetime::kLeaveArena;
   // why: removal_x far upwind removes every filament at the next move, so after each step the
   // plume holds exactly the filaments just released, at their release positions
-  Plume plume(p, source, kDt, -1e9, 77);
+  FilamentPlume plume(p, source, -1e9, 77);
   std::vector<Vec3> out;
   for (int k = 0; k < steps; ++k) {
-    plume.step(wind, k * kDt);
+    plume.step(wind, kDt);
     EXPECT_TRUE(plume.size() == 3 || plume.size() == 4);
     for (std::size_t i = 0; i < plume.size(); ++i) {
       out.push_back({plume.x()[i] - source.center.x, plume.y()[i] - source.center.y,
@@ -298,9 +300,9 @@ TEST(Plume, RingBufferSaturatesAtCapacityAndOverwritesOldest) {
   ASSERT_EQ(params.capacity, 1600);
   SourceParams source;
   source.radius = 0.0;  // a point source: every filament starts at x = 1
-  Plume plume(params, source, kDt, 16.0, 1);
+  FilamentPlume plume(params, source, 16.0, 1);
   for (std::int64_t n = 1; n <= 1000; ++n) {
-    plume.step(wind, (n - 1) * kDt);
+    plume.step(wind, kDt);
     const std::int64_t released = released_after(n);
     ASSERT_EQ(static_cast<std::int64_t>(plume.released()), released);
     ASSERT_EQ(static_cast<std::int64_t>(plume.size()), std::min<std::int64_t>(released, 1600));
@@ -328,11 +330,11 @@ TEST(Plume, LeaveArenaRemovesFilamentsDownwindOfRemovalX) {
   SourceParams source;
   source.radius = 0.0;
   const double x_max = 16.0;
-  Plume plume(params, source, kDt, x_max, 1);
+  FilamentPlume plume(params, source, x_max, 1);
   // a filament survives m moves while 1 + m dt <= 16, i.e. m <= 468
   const std::int64_t max_moves = 468;
   for (std::int64_t n = 1; n <= 1500; ++n) {
-    plume.step(wind, (n - 1) * kDt);
+    plume.step(wind, kDt);
     for (double x : plume.x()) ASSERT_LE(x, x_max);
     const std::int64_t released = released_after(n);
     const std::int64_t gone = n > max_moves ? released_after(n - max_moves - 1) : 0;
@@ -348,9 +350,9 @@ TEST(Plume, LeaveArenaRemovesFilamentsDownwindOfRemovalX) {
 TEST(Plume, LeaveArenaWithNoiseKeepsOnlyFilamentsUpwindOfRemovalX) {
   const ConstantWind wind({1.0, 0.0, 0.0});
   const PlumeParams params = plume_preset(PlumePreset::kPaperLiteral);
-  Plume plume(params, SourceParams{}, kDt, 6.0, 8);
+  FilamentPlume plume(params, SourceParams{}, 6.0, 8);
   for (int n = 0; n < 400; ++n) {
-    plume.step(wind, n * kDt);
+    plume.step(wind, kDt);
     for (double x : plume.x()) ASSERT_LE(x, 6.0);
   }
   EXPECT_LT(plume.size(), plume.released());
@@ -400,8 +402,8 @@ TEST(Plume, ConcentrationOfSingleFilamentEqualsKernel) {
     source.center = {3.0, 0.5, 0.0};
     source.radius = 0.0;
     const ConstantWind wind({0.0, 0.0, 0.0});
-    Plume plume(params, source, 0.5, 16.0, 4);
-    plume.step(wind, 0.0);
+    FilamentPlume plume(params, source, 16.0, 4);
+    plume.step(wind, 0.5);
     ASSERT_EQ(plume.size(), 1u);
     const double w = params.initial_width;
     for (const Vec3& u : {Vec3{3.0, 0.5, 0.0}, Vec3{3.1, 0.4, 0.05}, Vec3{3.0, 1.2, 0.0},
@@ -468,11 +470,11 @@ TEST(Plume, PaperLiteralPresetMatchesSpecTable) {
 
 TEST(Plume, SameSeedSamePlume) {
   const ConstantWind wind({1.0, 0.0, 0.0});
-  Plume a(PlumeParams{}, SourceParams{}, kDt, 16.0, 42),
-      b(PlumeParams{}, SourceParams{}, kDt, 16.0, 42);
+  FilamentPlume a(PlumeParams{}, SourceParams{}, 16.0, 42),
+      b(PlumeParams{}, SourceParams{}, 16.0, 42);
   for (int k = 0; k < 300; ++k) {
-    a.step(wind, k * kDt);
-    b.step(wind, k * kDt);
+    a.step(wind, kDt);
+    b.step(wind, kDt);
   }
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -553,11 +555,72 @@ TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
   }
 }
 
+// A uniform wind that blows 0.1 m/s harder after every step; counts its steps.
+class SteppedWind final : public WindField {
+ public:
+  void step(double) override { ++steps; }
+  Vec3 velocity(const Vec3&) const override { return {0.5 + 0.1 * steps, 0.0, 0.0}; }
+  bool uniform_in_space() const override { return true; }
+  int steps = 0;
+};
+
+// An odor model of one uniform concentration that records the wind and dt of each step.
+class RecordingOdor final : public OdorField {
+ public:
+  void step(const WindField& wind, double dt) override {
+    winds.push_back(wind.velocity({0.0, 0.0, 0.0}).x);
+    dts.push_back(dt);
+  }
+  double concentration(const Vec3&) const override { return 100.0; }
+  OdorSnapshot snapshot() const override { return {}; }
+  std::vector<double> winds, dts;
+};
+
+TEST(Environment, StepAdvancesTheWindThenTheOdorThenTheClockOncePerCall) {
+  Environment env;
+  auto wind = std::make_unique<SteppedWind>();
+  auto odor = std::make_unique<RecordingOdor>();
+  const SteppedWind& w = *wind;
+  const RecordingOdor& o = *odor;
+  env.wind = std::move(wind);
+  env.odor = std::move(odor);
+  EXPECT_EQ(env.time, 0.0);
+  for (int k = 1; k <= 5; ++k) {
+    step(env, 0.25);
+    EXPECT_EQ(w.steps, k);
+    EXPECT_EQ(env.time, 0.25 * k);  // exact: quarters add exactly
+    ASSERT_EQ(o.winds.size(), static_cast<std::size_t>(k));
+    // the odor moved in the wind already advanced to this step
+    EXPECT_EQ(o.winds.back(), 0.5 + 0.1 * k);
+    EXPECT_EQ(o.dts.back(), 0.25);
+  }
+}
+
+TEST(Environment, AnOdorModelAnswersReachesByItsConcentration) {
+  const RecordingOdor odor;
+  EXPECT_TRUE(odor.reaches({1.0, 2.0, 3.0}, 100.0));
+  EXPECT_TRUE(odor.reaches({1.0, 2.0, 3.0}, std::nextafter(100.0, 0.0)));
+  EXPECT_FALSE(odor.reaches({1.0, 2.0, 3.0}, std::nextafter(100.0, INFINITY)));
+}
+
+TEST(Plume, SnapshotIsTheFilamentArrays) {
+  const ConstantWind wind({1.0, 0.0, 0.0});
+  FilamentPlume plume(PlumeParams{}, SourceParams{}, 16.0, 3);
+  for (int k = 0; k < 50; ++k) plume.step(wind, kDt);
+  const OdorSnapshot s = plume.snapshot();
+  EXPECT_EQ(s.kind, OdorSnapshotKind::kFilaments);
+  ASSERT_EQ(s.filaments.size(), plume.size());
+  EXPECT_EQ(s.filaments.x.data(), plume.x().data());
+  EXPECT_EQ(s.filaments.y.data(), plume.y().data());
+  EXPECT_EQ(s.filaments.z.data(), plume.z().data());
+  EXPECT_EQ(s.filaments.w.data(), plume.w().data());
+}
+
 TEST(Plume, ReachesAnswersExactlyAsTheFullSum) {
   Scenario s;
-  const auto wind = make_wind_field(s.wind);
-  Plume plume(s.plume, s.source, s.sim.dt, s.arena.x_max, 99);
-  for (int i = 0; i < 700; ++i) plume.step(*wind, i * s.sim.dt);
+  const auto wind = make_wind_field(s.wind, Rng(99));
+  FilamentPlume plume(s.plume, s.source, s.arena.x_max, 99);
+  for (int i = 0; i < 700; ++i) plume.step(*wind, s.sim.dt);
   Rng rng(5);
   int agree = 0, odor = 0;
   for (int k = 0; k < 4000; ++k) {

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "plumetrace/env/environment.hpp"
+#include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/trace.hpp"
 
@@ -332,13 +334,17 @@ TEST(Reproducibility, DifferentTrialOrSeedGivesADifferentTrace) {
   EXPECT_FALSE(same_snapshot(a.snapshots.front(), b.snapshots.front()));
 }
 
-void expect_same_plume(const Plume& a, const Plume& b, const char* when) {
+// the filaments of a world's plume
+FilamentSpans filaments(const World& world) {
+  return world.environment().odor->snapshot().filaments;
+}
+
+void expect_same_plume(const FilamentSpans& a, const FilamentSpans& b, const char* when) {
   ASSERT_EQ(a.size(), b.size()) << when;
   const auto same = [](std::span<const double> u, std::span<const double> v) {
     return same_bits({u.begin(), u.end()}, {v.begin(), v.end()});
   };
-  EXPECT_TRUE(same(a.x(), b.x()) && same(a.y(), b.y()) && same(a.z(), b.z()) && same(a.w(), b.w()))
-      << when;
+  EXPECT_TRUE(same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z) && same(a.w, b.w)) << when;
 }
 
 TEST(Reproducibility, TrialMeetsTheSamePlumeWhateverTheController) {
@@ -351,9 +357,9 @@ TEST(Reproducibility, TrialMeetsTheSamePlumeWhateverTheController) {
   cast.controller.surge_cast.d_lost = 0.3;
   for (std::uint64_t trial : {0u, 7u}) {
     World a(casting, kSeed, trial), b(spiral, kSeed, trial), c(cast, kSeed, trial);
-    ASSERT_GT(a.plume().size(), 1000u);
-    expect_same_plume(a.plume(), b.plume(), "after warm-up");
-    expect_same_plume(a.plume(), c.plume(), "after warm-up");
+    ASSERT_GT(filaments(a).size(), 1000u);
+    expect_same_plume(filaments(a), filaments(b), "after warm-up");
+    expect_same_plume(filaments(a), filaments(c), "after warm-up");
     for (int i = 0; i < 500; ++i) {
       a.step();
       b.step();
@@ -362,12 +368,12 @@ TEST(Reproducibility, TrialMeetsTheSamePlumeWhateverTheController) {
     ASSERT_FALSE(a.done() || b.done() || c.done());
     // the robots went their own ways, the plume did not
     EXPECT_NE(bits(a.robot().pose.y), bits(b.robot().pose.y));
-    expect_same_plume(a.plume(), b.plume(), "after 500 steps");
-    expect_same_plume(a.plume(), c.plume(), "after 500 steps");
+    expect_same_plume(filaments(a), filaments(b), "after 500 steps");
+    expect_same_plume(filaments(a), filaments(c), "after 500 steps");
   }
   // a different trial meets a different plume
   World t0(casting, kSeed, 0), t1(casting, kSeed, 1);
-  EXPECT_NE(bits(t0.plume().x()[0]), bits(t1.plume().x()[0]));
+  EXPECT_NE(bits(filaments(t0).x[0]), bits(filaments(t1).x[0]));
 }
 
 bool same_result(const RunResult& a, const RunResult& b) {
@@ -376,6 +382,90 @@ bool same_result(const RunResult& a, const RunResult& b) {
          a.losses == b.losses && bits(a.odor_fraction) == bits(b.odor_fraction) &&
          a.steps == b.steps && a.wind_samples == b.wind_samples && a.seed == b.seed &&
          a.trial == b.trial;
+}
+
+// A uniform wind that blows 0.1 m/s harder after every step, so that a reading tells which step
+// the field is at; counts its steps.
+class SteppedWind final : public WindField {
+ public:
+  void step(double) override { ++steps; }
+  Vec3 velocity(const Vec3&) const override { return {0.5 + 0.1 * steps, 0.0, 0.0}; }
+  bool uniform_in_space() const override { return true; }
+  int steps = 0;
+};
+
+// Stands still and takes one wind sample per step (body frame x).
+class WindLogger final : public Controller {
+ public:
+  explicit WindLogger(std::vector<double>& log) : log_(log) {}
+  Command step(const Observation&, WindProbe& wind) override {
+    log_.push_back(wind.measure_wind_body().x);
+    return Command::stop();
+  }
+  std::string_view state() const override { return "logging"; }
+  int losses() const override { return 0; }
+
+ private:
+  std::vector<double>& log_;
+};
+
+TEST(World, TheWindSensorAndThePlumeReadTheSameWindObject) {
+  Scenario s;
+  s.sim.warmup = 1.0;
+  s.plume.sigma_p = 0.0;  // filaments move by the wind alone
+  s.plume.gamma = 0.0;
+  s.wind_sensor.sigma_a = 0.0;  // the sensor reads the wind itself
+  s.robot.start.heading = 0.0;  // body frame = world frame
+  Environment env;
+  auto wind = std::make_unique<SteppedWind>();
+  const SteppedWind& field = *wind;
+  env.wind = std::move(wind);
+  env.odor = std::make_unique<FilamentPlume>(s.plume, s.source, s.arena.x_max, 7);
+  std::vector<double> sensed;
+  World world(s, kSeed, 0, std::make_unique<WindLogger>(sensed), std::move(env));
+  const int warmup_steps = 31;  // llround(1.0 / 0.032)
+  ASSERT_EQ(field.steps, warmup_steps);
+  EXPECT_NEAR(world.environment().time, warmup_steps * s.sim.dt, 1e-12);
+  for (int k = 1; k <= 20; ++k) {
+    const FilamentSpans before = filaments(world);
+    const std::vector<double> x(before.x.begin(), before.x.end());
+    world.step();
+    // the field took one step per World step, however many readers it has
+    ASSERT_EQ(field.steps, warmup_steps + k);
+    ASSERT_EQ(sensed.size(), static_cast<std::size_t>(k));
+    // the sensor read the field as it is after this step's advance ...
+    EXPECT_DOUBLE_EQ(sensed.back(), 0.5 + 0.1 * (warmup_steps + k));
+    // ... and the filaments moved in that same wind (the neighbouring steps' winds differ by
+    // 0.1 m/s, 3.2 mm a step)
+    const FilamentSpans after = filaments(world);
+    ASSERT_GE(after.size(), x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      EXPECT_NEAR(after.x[i] - x[i], sensed.back() * s.sim.dt, 1e-12) << "step " << k;
+    }
+  }
+}
+
+TEST(World, AgentsInOneEnvironmentEqualSeparateRunsBitForBit) {
+  std::vector<Scenario> scenarios;
+  for (Algorithm algorithm : all_algorithms()) scenarios.push_back(make_scenario(algorithm, 300.0));
+  scenarios[1].wind_sensor.sigma_a = 0.4;
+  scenarios[2].robot.start.x = 8.0;
+  scenarios.push_back(make_scenario(Algorithm::kCasting, 20.0));  // ends long before the others
+  std::vector<const Scenario*> group;
+  for (const auto& s : scenarios) group.push_back(&s);
+  for (std::uint64_t trial : {0u, 1u}) {
+    World world(group, kSeed, trial);
+    ASSERT_EQ(world.agent_count(), scenarios.size());
+    while (!world.done()) world.step();
+    const std::vector<RunResult> together = world.results();
+    ASSERT_EQ(together.size(), scenarios.size());
+    for (std::size_t i = 0; i < scenarios.size(); ++i) {
+      EXPECT_TRUE(same_result(together[i], run_once(scenarios[i], kSeed, trial)))
+          << "agent " << i << " trial " << trial;
+      EXPECT_TRUE(same_result(world.agent(i).result(), together[i]));
+    }
+    EXPECT_TRUE(same_result(world.result(), together[0]));
+  }
 }
 
 TEST(Reproducibility, RunOnceIsAPureFunctionOfScenarioSeedAndTrial) {

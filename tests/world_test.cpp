@@ -445,6 +445,15 @@ TEST(World, TheWindSensorAndThePlumeReadTheSameWindObject) {
   }
 }
 
+TEST(World, AnEnvironmentWithoutWindOrOdorIsRefused) {
+  const Scenario s;
+  Environment no_odor;
+  no_odor.wind = std::make_unique<ConstantWind>(s.wind.velocity);
+  EXPECT_THROW(World(s, kSeed, 0, make_run_controller(s, kSeed, 0), std::move(no_odor)),
+               std::invalid_argument);
+  EXPECT_THROW(World(std::vector<const Scenario*>{}, kSeed, 0), std::invalid_argument);
+}
+
 TEST(World, AgentsInOneEnvironmentEqualSeparateRunsBitForBit) {
   std::vector<Scenario> scenarios;
   for (Algorithm algorithm : all_algorithms()) scenarios.push_back(make_scenario(algorithm, 300.0));

@@ -124,6 +124,14 @@ const Scenario& first_of(const std::vector<const Scenario*>& scenarios) {
   return *scenarios.front();
 }
 
+// why: the agents' sensors bind to the environment's fields as they are built
+Environment complete(Environment env) {
+  if (!env.wind || !env.odor) {
+    throw std::invalid_argument("World: the environment needs a wind field and an odor field");
+  }
+  return env;
+}
+
 }  // namespace
 
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial)
@@ -136,7 +144,7 @@ World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
 
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
              std::unique_ptr<Controller> controller, Environment env)
-    : env_(std::move(env)), dt_(scenario.sim.dt) {
+    : env_(complete(std::move(env))), dt_(scenario.sim.dt) {
   add_agent(scenario, seed, trial, std::move(controller));
   start(scenario);
 }

@@ -64,7 +64,7 @@ class Zigzag final : public pt::Controller {
 int main(int argc, char** argv) {
   // the one registration a custom controller needs: a factory
   const pt::ControllerFactory zigzag = [](const pt::Scenario& s, pt::Rng) {
-    return std::make_unique<Zigzag>(s.controller.surge_cast.d_lost);
+    return std::make_unique<Zigzag>(s.controller.get<pt::SurgeCastParams>().d_lost);
   };
 
   // single runs of the default scenario

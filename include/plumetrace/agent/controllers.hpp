@@ -19,6 +19,8 @@ namespace plumetrace {
 using ControllerRegistry = Registry<Controller, Rng>;
 
 /// The controllers: the built-in algorithms, then those registered from outside the library.
+/// Add to it only before the first run starts, as static registrars do (runs read it from many
+/// threads); a name must not be that of a scenario table ("robot", "controller", ...).
 ControllerRegistry& controller_registry();
 
 /// Registers a controller from outside the library: one line at namespace scope in a source of

@@ -35,6 +35,17 @@ namespace {
 
 using plumetrace::cli::kBadInput;
 
+// the registered algorithms: "casting, surge-spiral or surge-cast"
+std::string algorithm_names() {
+  const auto all = pt::all_algorithms();
+  std::string out;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == all.size() ? " or " : ", ");
+    out += pt::algorithm_name(all[i]);
+  }
+  return out;
+}
+
 // options every scenario-reading command shares
 struct ScenarioOptions {
   std::string path;
@@ -47,8 +58,7 @@ struct ScenarioOptions {
     cmd.add_option("--set", sets, "override a config key: key.path=value (repeatable)")
         ->allow_extra_args(false);
     if (with_algorithm) {
-      cmd.add_option("--algorithm", algorithm, "casting, surge-spiral or surge-cast")
-          ->check(cli::not_empty());
+      cmd.add_option("--algorithm", algorithm, algorithm_names())->check(cli::not_empty());
     }
   }
 

@@ -1,6 +1,7 @@
 // A controller of your own in C++: write a Controller, hand a ControllerFactory to a run or a
 // sweep. This one surges upwind while it smells odor and zigzags crosswind, with legs growing
-// by 50%, once it has lost the plume.
+// by 50%, once it has lost the plume. It has no config keys of its own; examples/zigzag
+// registers one that has, in one line, and makes it part of the plumetrace command.
 //
 // Build: part of the CMake project (build/example_custom_controller).
 // Run:   build/example_custom_controller [sweep.toml]
@@ -62,9 +63,9 @@ class Zigzag final : public pt::Controller {
 };
 
 int main(int argc, char** argv) {
-  // the one registration a custom controller needs: a factory
+  // no registration: a factory, handed to each run and sweep
   const pt::ControllerFactory zigzag = [](const pt::Scenario& s, pt::Rng) {
-    return std::make_unique<Zigzag>(s.controller.surge_cast.d_lost);
+    return std::make_unique<Zigzag>(s.controller.get<pt::SurgeCastParams>().d_lost);
   };
 
   // single runs of the default scenario

@@ -122,10 +122,34 @@ std::vector<std::size_t> switches(const std::vector<StepRecord>& log, std::strin
 std::unique_ptr<Controller> make(Algorithm algorithm, double d_lost, std::uint64_t seed) {
   ControllerParams params;
   params.algorithm = algorithm;
-  params.casting.d_lost = d_lost;
-  params.surge_spiral.d_lost = d_lost;
-  params.surge_cast.d_lost = d_lost;
+  params.get<CastingParams>().d_lost = d_lost;
+  params.get<SurgeSpiralParams>().d_lost = d_lost;
+  params.get<SurgeCastParams>().d_lost = d_lost;
   return make_controller(params, Rng(seed));
+}
+
+// the registry
+
+TEST(ControllerRegistry, BuiltInsAreRegisteredInTheOrderOfAlgorithm) {
+  EXPECT_EQ(algorithm_name(Algorithm::kCasting), "casting");
+  EXPECT_EQ(algorithm_name(Algorithm::kSurgeSpiral), "surge-spiral");
+  EXPECT_EQ(algorithm_name(Algorithm::kSurgeCast), "surge-cast");
+  const ControllerRegistry& r = controller_registry();
+  EXPECT_EQ(r.index_of<CastingParams>(), static_cast<std::size_t>(Algorithm::kCasting));
+  EXPECT_EQ(r.index_of<SurgeSpiralParams>(), static_cast<std::size_t>(Algorithm::kSurgeSpiral));
+  EXPECT_EQ(r.index_of<SurgeCastParams>(), static_cast<std::size_t>(Algorithm::kSurgeCast));
+  EXPECT_EQ(r[static_cast<std::size_t>(Algorithm::kSurgeSpiral)].table, "surge_spiral");
+}
+
+TEST(ControllerRegistry, MakesTheChosenAlgorithmWithItsOwnParams) {
+  ControllerParams params;
+  params.algorithm = Algorithm::kSurgeCast;
+  params.get<SurgeCastParams>().d_cast = 0.5;
+  EXPECT_NE(dynamic_cast<SurgeCast*>(make_controller(params, Rng(1)).get()), nullptr);
+  params.algorithm = Algorithm::kSurgeSpiral;
+  EXPECT_NE(dynamic_cast<SurgeSpiral*>(make_controller(params, Rng(1)).get()), nullptr);
+  // the params written are this config's own: the registry's defaults are untouched
+  EXPECT_EQ(ControllerParams{}.get<SurgeCastParams>().d_cast, SurgeCastParams{}.d_cast);
 }
 
 // guess_plume_side

@@ -52,7 +52,7 @@ TEST(Scenario, PaperLiteralFileSetsEveryPresetRow) {
   EXPECT_EQ(s.wind.velocity.x, 1.0);
   EXPECT_EQ(s.odor.height, 0.0);
   EXPECT_EQ(s.source.solid_radius, 0.0);
-  EXPECT_EQ(s.controller.surge_spiral.start_radius, 0.0);
+  EXPECT_EQ(s.controller.get<SurgeSpiralParams>().start_radius, 0.0);
 }
 
 TEST(Scenario, PaperLiteralFileIsThePrintedReading) {
@@ -89,7 +89,7 @@ TEST(Scenario, PresetInALaterLayerReplacesPlumeRowsOfEarlierLayers) {
   const Scenario u = load_scenario(
       kScenarios + "lochmatter2008.toml",
       {parse_override("plume.preset=paper-literal"), parse_override("casting.beta_deg=30")});
-  EXPECT_DOUBLE_EQ(u.controller.casting.beta, kPi / 6.0);
+  EXPECT_DOUBLE_EQ(u.controller.get<CastingParams>().beta, kPi / 6.0);
 }
 
 TEST(Scenario, ResolvedTomlReadsBackToTheSameScenario) {
@@ -106,12 +106,12 @@ TEST(Scenario, ResolvedTomlReadsBackToTheSameScenario) {
   }
   const Scenario back = load_scenario(path, {});
   EXPECT_EQ(scenario_to_toml(back), toml);
-  EXPECT_EQ(back.controller.casting.beta, s.controller.casting.beta);
+  EXPECT_EQ(back.controller.get<CastingParams>().beta, s.controller.get<CastingParams>().beta);
 }
 
 TEST(Scenario, DegreesAreStoredInRadiansAndPrintedInDegrees) {
   const Scenario s = build_scenario({parse_override("casting.beta_deg=30")});
-  EXPECT_DOUBLE_EQ(s.controller.casting.beta, kPi / 6.0);
+  EXPECT_DOUBLE_EQ(s.controller.get<CastingParams>().beta, kPi / 6.0);
   EXPECT_EQ(format_value(get_field(s, "casting.beta_deg")), "30.0");
 }
 
@@ -239,8 +239,8 @@ TEST(Scenario, DefaultsAreTheEvidencedReading) {
   EXPECT_EQ(s.source.solid_radius, 0.05);
   EXPECT_EQ(s.wind_sensor.samples, 1);
   EXPECT_EQ(s.wind_sensor.sigma_a_scale, 1.0);
-  EXPECT_EQ(s.controller.surge_spiral.start_radius, 0.049);
-  EXPECT_EQ(s.controller.casting.reacquire_side, ReacquireSide::kAlternate);
+  EXPECT_EQ(s.controller.get<SurgeSpiralParams>().start_radius, 0.049);
+  EXPECT_EQ(s.controller.get<CastingParams>().reacquire_side, ReacquireSide::kAlternate);
   EXPECT_EQ(format_value(get_field(s, "casting.reacquire_side")), "'alternate'");
 }
 

@@ -291,7 +291,7 @@ TEST(SharedPlume, AgentsOnOnePlumeEqualSeparateRunsBitForBit) {
   scenarios[3].supervisor.success_radius = 0.6;
   scenarios[4].controller.algorithm = Algorithm::kSurgeCast;
   scenarios[4].robot.start.x = 6.0;
-  scenarios[4].controller.surge_cast.d_cast = 0.1;
+  scenarios[4].controller.get<SurgeCastParams>().d_cast = 0.1;
   scenarios[5].controller.algorithm = Algorithm::kCasting;
   scenarios[5].supervisor.timeout = 30.0;  // ends long before the others
   std::vector<const Scenario*> group;
@@ -322,8 +322,8 @@ TEST(SharedPlume, ScenariosWithDifferentPlumesAreRefused) {
   b.wind_sensor.sigma_a_scale = 2.0;
   b.wind_sensor.samples = 4;
   b.source.solid_radius = 0.05;  // an obstacle for the robot, not for the filaments
-  b.controller.casting.reacquire_side = ReacquireSide::kSame;
-  b.controller.surge_spiral.start_radius = 0.1;
+  b.controller.get<CastingParams>().reacquire_side = ReacquireSide::kSame;
+  b.controller.get<SurgeSpiralParams>().start_radius = 0.1;
   EXPECT_EQ(plume_key(a), plume_key(b));  // robot-side keys do not change the plume
   b.plume.sigma_p = 0.2;
   EXPECT_THROW(run_shared({&a, &b}, 1, 0), std::invalid_argument);

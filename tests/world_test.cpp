@@ -155,7 +155,7 @@ TEST(WorldRun, TimesOutAtTheFirstStepReachingTheTimeLimit) {
 TEST(WorldRun, SurgeCastGivesUpWhenNoOdorIsEverPerceived) {
   const Scenario s = build_scenario(
       {parse_override("controller.algorithm=surge-cast"), parse_override("odor.threshold=1e30")});
-  const SurgeCastParams& p = s.controller.surge_cast;
+  const SurgeCastParams& p = s.controller.get<SurgeCastParams>();
   for (std::uint64_t trial = 0; trial < 3; ++trial) {
     const RunResult r = run_once(s, kSeed, trial);
     EXPECT_EQ(r.outcome, Outcome::kGaveUp);
@@ -351,10 +351,10 @@ TEST(Reproducibility, TrialMeetsTheSamePlumeWhateverTheController) {
   // the sweep point (algorithm, its parameters, the wind-sensor noise) never enters the plume
   Scenario casting = make_scenario(Algorithm::kCasting, 1200.0);
   Scenario spiral = make_scenario(Algorithm::kSurgeSpiral, 1200.0);
-  spiral.controller.surge_spiral.d_gap = 0.111;
+  spiral.controller.get<SurgeSpiralParams>().d_gap = 0.111;
   spiral.wind_sensor.sigma_a = 0.5;
   Scenario cast = make_scenario(Algorithm::kSurgeCast, 1200.0);
-  cast.controller.surge_cast.d_lost = 0.3;
+  cast.controller.get<SurgeCastParams>().d_lost = 0.3;
   for (std::uint64_t trial : {0u, 7u}) {
     World a(casting, kSeed, trial), b(spiral, kSeed, trial), c(cast, kSeed, trial);
     ASSERT_GT(filaments(a).size(), 1000u);

@@ -62,15 +62,12 @@ Scenario load_scenario(const std::string& path, const std::vector<Setting>& over
 }
 
 std::string scenario_to_json(const Scenario& scenario) {
-  Scenario copy = scenario;
   json j = json::object();
-  for (const auto& f : scenario_fields(copy)) {
-    const auto dot = f.key.find('.');
-    const ConfigValue v = get_field(scenario, f.key);
-    const double* d = std::get_if<double>(&v);
-    j[f.key.substr(0, dot)][f.key.substr(dot + 1)] =
-        d && std::isinf(*d) ? json(format_number(*d)) : value_to_json(v);
-  }
+  for_each_value(scenario, [&j](const FieldValue& f) {
+    const double* d = std::get_if<double>(&f.value);
+    j[std::string(f.table)][std::string(f.name)] =
+        d && std::isinf(*d) ? json(format_number(*d)) : value_to_json(f.value);
+  });
   return j.dump(2);
 }
 

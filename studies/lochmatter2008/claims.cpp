@@ -850,7 +850,6 @@ Decision claim11(const Sets& sets) {
   const Needed n = need(sets, {"A", "B", "D", "E", "G", "H"}, 3);
   if (!n.problem.empty()) return unclear_because(n.problem);
   std::vector<Part> parts;
-  const char* algorithms[] = {"casting", "surge-spiral", "surge-cast"};
   for (int a = 0; a < 3; ++a) {
     const Importance specific = importance(*n.sets[2 * a]);
     const Importance lost = importance(*n.sets[2 * a + 1]);
@@ -858,7 +857,7 @@ Decision claim11(const Sets& sets) {
                                         width(lost.bounds) + kMuchLess * width(specific.bounds))};
     if (lost.bounds.hi < kMuchLess * specific.bounds.lo) s.support = Support::kYes;
     if (lost.bounds.lo >= kMuchLess * specific.bounds.hi) s.support = Support::kNo;
-    parts.push_back(part(s, std::string(algorithms[a]) + ": " + lost.text + "; importance " +
+    parts.push_back(part(s, n.sets[2 * a]->algorithm + ": " + lost.text + "; importance " +
                                 num(lost.point) + " " + interval(lost.bounds) + " vs " +
                                 specific.text + "; importance " + num(specific.point) + " " +
                                 interval(specific.bounds) + "; needs < " + num(kMuchLess) + " x"));

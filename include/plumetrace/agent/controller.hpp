@@ -3,13 +3,15 @@
 #include <string_view>
 
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
 
 /// A plume-tracking algorithm: turns measurements into motion commands.
-/// why: controllers include only geometry and measurement, so they cannot peek at the world.
+/// why: controllers include only geometry and measurement (and config, for their params' keys),
+/// so they cannot peek at the world.
 class Controller {
  public:
   virtual ~Controller() = default;

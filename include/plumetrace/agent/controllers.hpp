@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstddef>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -8,29 +10,68 @@
 #include "plumetrace/agent/controllers/casting.hpp"
 #include "plumetrace/agent/controllers/surge_cast.hpp"
 #include "plumetrace/agent/controllers/surge_spiral.hpp"
+#include "plumetrace/core/registry.hpp"
 
 namespace plumetrace {
 
-/// The built-in algorithms.
-enum class Algorithm { kCasting, kSurgeSpiral, kSurgeCast };
+/// Every controller a config can choose: a model type and its params struct, made with the run's
+/// controller stream (core/registry.hpp).
+using ControllerRegistry = Registry<Controller, Rng>;
+
+/// The controllers: the built-in algorithms, then those registered from outside the library.
+/// Add to it only before the first run starts, as static registrars do (runs read it from many
+/// threads); a name must not be that of a scenario table ("robot", "controller", ...).
+ControllerRegistry& controller_registry();
+
+/// Registers a controller from outside the library: one line at namespace scope in a source of
+/// the program (examples/zigzag/zigzag.cpp),
+///   const plumetrace::RegisterController<Zigzag, ZigzagParams> kZigzag("zigzag");
+/// `Model` is made as Model(const Params&, Rng). The name becomes a value of
+/// controller.algorithm, and the keys of Params::fields config keys in the table of that name
+/// ("zigzag.leg"): in files, --set, sweeps, `plumetrace config` and every resolved scenario of
+/// that program. Throws std::invalid_argument when the name is taken.
+template <class Model, class Params>
+struct RegisterController {
+  /// Adds Model to controller_registry() under `name`.
+  explicit RegisterController(std::string name)
+      : index(controller_registry().add<Model, Params>(std::move(name))) {}
+  /// Its place in controller_registry().
+  std::size_t index;
+};
+
+/// An algorithm: its place in controller_registry(). The built-ins are named here, in the order
+/// they are registered; a controller registered from outside the library comes after them.
+enum class Algorithm : int { kCasting, kSurgeSpiral, kSurgeCast };
 
 /// Which algorithm runs, and the parameters of each.
 struct ControllerParams {
   /// Algorithm driving the robot.
   Algorithm algorithm = Algorithm::kCasting;
-  /// Casting parameters.
-  CastingParams casting;
-  /// Surge-spiral parameters.
-  SurgeSpiralParams surge_spiral;
-  /// Surge-cast parameters.
-  SurgeCastParams surge_cast;
+  /// The params of every registered controller; each its defaults until written.
+  FamilyParams<ControllerRegistry> params;
+
+  /// The params struct P (CastingParams, ...) of its controller.
+  template <class P>
+  P& get() {
+    return params.get<P>(controller_registry());
+  }
+  /// The params struct P (CastingParams, ...) of its controller.
+  template <class P>
+  const P& get() const {
+    return params.get<P>(controller_registry());
+  }
+
+  /// The config keys: "algorithm", then the table of every registered controller with its keys.
+  void fields(FieldVisitor& v);
+  /// Reads the config keys without writing.
+  void read_fields(FieldReader& v) const;
 };
 
 /// Name of an algorithm as written in configs and on the command line.
 std::string_view algorithm_name(Algorithm algorithm);
 
-/// Every algorithm, in declaration order.
-const std::vector<Algorithm>& all_algorithms();
+/// Every registered algorithm, in registry order.
+std::vector<Algorithm> all_algorithms();
 
 /// Builds the controller of the selected algorithm with its random stream.
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
 
 namespace plumetrace {
@@ -15,6 +16,19 @@ struct RobotParams {
   double wheel_speed = 0.106;
   /// Start position and heading (m, rad): 14.5 m downwind of the source, facing upwind.
   Pose start{15.5, 0.0, kPi};
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    const double deg = kPi / 180.0;
+    v("radius", radius, "body radius (m)", kPositive);
+    v("axle", axle, "distance between the wheels (m)", kPositive);
+    v("wheel_speed", wheel_speed, "wheel-speed limit = straight-line speed (m/s)", kPositive);
+    v("start_x", start.x, "start position x (m)", kAnyNumber);
+    v("start_y", start.y, "start position y (m)", kAnyNumber);
+    v("start_heading_deg", start.heading, "start heading (deg, counter-clockwise from +x)",
+      NumberSpec{.min = -kPi - 1e-12, .max = kPi + 1e-12, .scale = deg});
+  }
 };
 
 /// The robot's true state.

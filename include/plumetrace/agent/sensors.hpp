@@ -1,6 +1,7 @@
 #pragma once
 
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
 #include "plumetrace/env/odor.hpp"
@@ -15,6 +16,13 @@ struct OdorSensorParams {
   /// Height of the sensor above the source centre (m). why: 0.02, the robot model's sensors 7 cm
   /// up and the 2008 world's source centred 5 cm up (docs/fidelity.md, unknown 8).
   double height = 0.02;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("threshold", threshold, "concentration at which odor is perceived", kPositive);
+    v("height", height, "odor and wind sensor height (m)", kAnyNumber);
+  }
 };
 
 /// Wind-direction sensor (paper eqs. 6-7).
@@ -26,6 +34,15 @@ struct WindSensorParams {
   double sigma_a_scale = 1.0;
   /// Independent noisy samples averaged into one measurement (noise std / sqrt(samples)).
   int samples = 1;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("sigma_a", sigma_a, "noise std on each wind component (m/s)", kNonNegative);
+    v("sigma_a_scale", sigma_a_scale, "factor on sigma_a: the noise std is sigma_a * sigma_a_scale",
+      NumberSpec{.min = 0.0, .max = 100.0});
+    v("samples", samples, "noisy samples averaged into one wind measurement", IntegerSpec{1, 1000});
+  }
 };
 
 /// Where the odor sensor of a robot at `pose` samples the plume.

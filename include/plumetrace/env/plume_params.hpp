@@ -1,8 +1,18 @@
 #pragma once
 
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
 
 namespace plumetrace {
+
+/// The largest plume.release_rate (1/s): 1e6, 10^4 times the paper's 100/s. why: every released
+/// filament is stepped, and kept until it leaves under plume.lifetime = leave_arena; at 1e20 a
+/// run never ends (issue 13, F9).
+inline constexpr double kMaxReleaseRate = 1e6;
+
+/// The largest plume.capacity (filaments): 1e7, 6250 times the default 1600. why: the ring is
+/// reserved at the start of every run, 40 bytes a filament (400 MB at the limit, per thread).
+inline constexpr int kMaxCapacity = 10'000'000;
 
 /// Named sets of plume parameters (docs/model.md section 11).
 enum class PlumePreset {
@@ -44,6 +54,18 @@ struct SourceParams {
   /// The plume does not see it. why: the 2008 wind-tunnel world's collidable source cylinder
   /// (docs/fidelity.md, unknown 7).
   double solid_radius = 0.05;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("x", center.x, "source centre x (m)", kAnyNumber);
+    v("y", center.y, "source centre y (m)", kAnyNumber);
+    v("z", center.z, "source centre z (m)", kAnyNumber);
+    v("radius", radius, "source radius, filaments are released within it (m)", kPositive);
+    v("solid_radius", solid_radius,
+      "radius of a solid source cylinder the robot stops at (m, 0: none)",
+      NumberSpec{.min = 0.0, .max = 1.0});
+  }
 };
 
 /// Every row of the plume's preset table (docs/model.md); defaults are the `lochmatter2008`
@@ -75,6 +97,27 @@ struct PlumeParams {
   Kernel kernel = Kernel::kPrinted;
   /// Filaments farther than this from a query point contribute nothing (m); may be infinite.
   double cutoff = 1.0;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("preset", preset, "preset the plume rows start from", {"lochmatter2008", "paper-literal"});
+    v("release_rate", release_rate, "filaments released per second (1/s)",
+      NumberSpec{.min = 0.0, .max = kMaxReleaseRate, .min_open = true});
+    v("release_shape", release_shape, "release region around the source centre", {"ball", "disc"});
+    v("initial_width", initial_width, "width of a new filament (m)", kPositive);
+    v("amount", amount, "odor amount per filament (molecules)", kPositive);
+    v("noise_mode", noise_mode, "random-walk scaling with dt", {"velocity", "per_step", "wiener"});
+    v("sigma_p", sigma_p, "random-walk intensity (m/s, m or m/sqrt(s) by noise_mode)",
+      kNonNegative);
+    v("gamma", gamma, "width growth per step: w += gamma / (2 w) (m^2)", kNonNegative);
+    v("lifetime", lifetime, "how filaments leave", {"ring", "leave_arena"});
+    v("capacity", capacity, "ring-buffer size (filaments), lifetime = ring",
+      IntegerSpec{1, kMaxCapacity});
+    v("kernel", kernel, "concentration kernel", {"gaussian", "printed"});
+    v("cutoff", cutoff, "filaments farther than this contribute nothing (m, may be inf)",
+      NumberSpec{.min = 0.0, .min_open = true, .allow_infinite = true});
+  }
 };
 
 /// The parameters of a preset.

@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
 
@@ -17,6 +18,15 @@ struct WindParams {
   /// Constant wind velocity (m/s); paper eq. 1. why: 0.9, the plugin's hard-coded wind, not
   /// the printed 1 (docs/fidelity.md, unknown 9).
   Vec3 velocity{0.9, 0.0, 0.0};
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("model", model, "wind field", {"constant"});
+    v("vx", velocity.x, "constant wind velocity, x component (m/s)", kAnyNumber);
+    v("vy", velocity.y, "constant wind velocity, y component (m/s)", kAnyNumber);
+    v("vz", velocity.z, "constant wind velocity, z component (m/s)", kAnyNumber);
+  }
 };
 
 /// A wind field: the air velocity at every point, now. The field carries its own state and time

@@ -11,6 +11,7 @@
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/agent/robot.hpp"
 #include "plumetrace/agent/sensors.hpp"
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
@@ -23,6 +24,13 @@ struct SimParams {
   double dt = 0.032;
   /// Plume-only time before the robot is released (s).
   double warmup = 20.0;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("dt", dt, "time step for everything (s)", kPositive);
+    v("warmup", warmup, "plume-only time before the robot is released (s)", kNonNegative);
+  }
 };
 
 /// The rectangular arena with walls on all four sides (m).
@@ -35,6 +43,15 @@ struct ArenaParams {
   double y_min = -2.0;
   /// Left-hand wall (m).
   double y_max = 2.0;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("x_min", x_min, "upwind wall (m)", kAnyNumber);
+    v("x_max", x_max, "downwind wall (m)", kAnyNumber);
+    v("y_min", y_min, "right-hand wall (m)", kAnyNumber);
+    v("y_max", y_max, "left-hand wall (m)", kAnyNumber);
+  }
 };
 
 /// When a run ends (docs/model.md section 8).
@@ -43,6 +60,14 @@ struct SupervisorParams {
   double success_radius = 0.185;
   /// Simulated time after release at which the run fails (s).
   double timeout = 1200.0;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("success_radius", success_radius,
+      "success once this close to the source centre (m; 0 only with a solid source)", kNonNegative);
+    v("timeout", timeout, "run time limit after release (s)", kPositive);
+  }
 };
 
 /// Everything one run depends on besides (seed, trial); defaults are the paper's setup.
@@ -57,6 +82,13 @@ struct Scenario {
   RobotParams robot;             ///< the robot and its start
   SupervisorParams supervisor;   ///< when a run ends
   ControllerParams controller;   ///< algorithm and its parameters
+
+  /// Every config key, in file order: each table, then the keys its params struct declares; the
+  /// one list used by files, CLI and Python. The controllers' tables follow "controller", one
+  /// per registered controller.
+  void fields(FieldVisitor& v);
+  /// Reads every config key in file order, without copying the scenario.
+  void read_fields(FieldReader& v) const;
 };
 
 /// The most steps of sim.dt a warm-up or a run may take: 1e7, 270 times the paper's run (37500
@@ -64,59 +96,12 @@ struct Scenario {
 /// without a word (1.3e-6 s: two hours; issue 13, F23).
 inline constexpr double kMaxSteps = 1e7;
 
-/// The largest plume.release_rate (1/s): 1e6, 10^4 times the paper's 100/s. why: every released
-/// filament is stepped, and kept until it leaves under plume.lifetime = leave_arena; at 1e20 a
-/// run never ends (issue 13, F9).
-inline constexpr double kMaxReleaseRate = 1e6;
-
 /// The most filaments released in one step (plume.release_rate * sim.dt): 1e6. why: the count is
 /// converted to an integer and released one by one; a large sim.dt must not make it huge (the
 /// conversion is undefined from 2^64).
 inline constexpr double kMaxReleasePerStep = 1e6;
 
-/// The largest plume.capacity (filaments): 1e7, 6250 times the default 1600. why: the ring is
-/// reserved at the start of every run, 40 bytes a filament (400 MB at the limit, per thread).
-inline constexpr int kMaxCapacity = 10'000'000;
-
-/// A value as read from a file or the command line.
-using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
-
-/// A real-valued key: file value times `scale` gives the SI value.
-struct NumberField {
-  double* value;                ///< where the SI value lives
-  double min = -INFINITY;       ///< lower bound (SI)
-  double max = INFINITY;        ///< upper bound (SI)
-  bool min_open = false;        ///< the lower bound itself is excluded
-  bool max_open = false;        ///< the upper bound itself is excluded
-  double scale = 1.0;           ///< SI value = file value * scale
-  bool allow_infinite = false;  ///< "inf" is a valid value
-};
-
-/// An integer key.
-struct IntegerField {
-  int* value;        ///< where the value lives
-  std::int64_t min;  ///< smallest allowed
-  std::int64_t max;  ///< largest allowed
-};
-
-/// A key with a fixed set of names.
-struct ChoiceField {
-  std::vector<std::string> names;  ///< allowed names, indexed by choice
-  std::function<int()> get;        ///< index of the current choice
-  std::function<void(int)> set;    ///< selects a choice by index
-};
-
-/// One config key bound to its place in a Scenario.
-struct Field {
-  /// Dotted key, e.g. "plume.sigma_p".
-  std::string key;
-  /// One line: meaning and unit.
-  std::string help;
-  /// Type, range and location of the value.
-  std::variant<NumberField, IntegerField, ChoiceField> kind;
-};
-
-/// Every config key of a scenario, in file order; the one list used by files, CLI and Python.
+/// Every config key of a scenario bound to its place, in file order (Scenario::fields).
 std::vector<Field> scenario_fields(Scenario& scenario);
 
 /// Sets one key from a typed value; throws ConfigError naming the key and the allowed range.
@@ -131,11 +116,16 @@ ConfigValue get_field(const Scenario& scenario, std::string_view key);
 /// Checks every key's range and the relations between keys; throws ConfigError.
 void validate(const Scenario& scenario);
 
-/// Formats a number so it reads back to the same double ("inf" for infinity).
-std::string format_number(double value);
+/// One key's value as it would be written to a file, with its table, name and help.
+struct FieldValue {
+  std::string_view table;  ///< "plume" of "plume.sigma_p"
+  std::string_view name;   ///< "sigma_p" of "plume.sigma_p"
+  std::string_view help;   ///< one line: meaning and unit
+  ConfigValue value;       ///< file units (degrees for a _deg key)
+};
 
-/// Formats a config value for display.
-std::string format_value(const ConfigValue& value);
+/// Calls `f` for every key of the scenario, in file order, without copying it.
+void for_each_value(const Scenario& scenario, const std::function<void(const FieldValue&)>& f);
 
 /// The fully resolved scenario as TOML that reads back to the same scenario: every key, in the
 /// order of the field list, with its help as a comment. Its hash identifies a sweep point.

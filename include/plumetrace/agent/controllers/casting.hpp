@@ -18,6 +18,17 @@ struct CastingParams {
   double d_lost = 0.614;
   /// Side of the upwind leg after reacquisition; the next crosswind leg still goes toward -s.
   ReacquireSide reacquire_side = ReacquireSide::kAlternate;
+
+  /// The config keys (core/config.hpp), in the table "casting".
+  template <class V>
+  void fields(V& v) {
+    const double deg = kPi / 180.0;
+    v("beta_deg", beta, "upwind leg angle to the measured upwind direction (deg)",
+      NumberSpec{.min = 0.0, .max = 90.0 * deg, .max_open = true, .scale = deg});
+    v("d_lost", d_lost, "path length without odor before the plume is lost (m)", kPositive);
+    v("reacquire_side", reacquire_side, "upwind side after a crosswind leg finds odor",
+      {"alternate", "same"});
+  }
 };
 
 /// Casting: upwind at +-beta while in the plume, crosswind back into it once lost; zigzags.

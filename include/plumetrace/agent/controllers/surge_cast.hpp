@@ -10,6 +10,13 @@ struct SurgeCastParams {
   double d_cast = 0.27;
   /// Path length without odor after which the plume is lost (m).
   double d_lost = 0.614;
+
+  /// The config keys (core/config.hpp), in the table "surge_cast".
+  template <class V>
+  void fields(V& v) {
+    v("d_cast", d_cast, "length of the first cast (m)", kPositive);
+    v("d_lost", d_lost, "path length without odor before the plume is lost (m)", kPositive);
+  }
 };
 
 /// Surge-cast: straight upwind in the plume; once lost, a crosswind cast of d_cast toward the

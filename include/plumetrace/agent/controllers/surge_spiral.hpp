@@ -14,6 +14,15 @@ struct SurgeSpiralParams {
   /// profile from theta0 = start_radius / b on (0: from the centre). why: 0.049, the Khepera III
   /// toolbox's spiral (docs/fidelity.md, unknown 10).
   double start_radius = 0.049;
+
+  /// The config keys (core/config.hpp), in the table "surge_spiral".
+  template <class V>
+  void fields(V& v) {
+    v("d_gap", d_gap, "gap between spiral turns (m)", kPositive);
+    v("d_lost", d_lost, "path length without odor before the plume is lost (m)", kPositive);
+    v("start_radius", start_radius, "radius on the spiral r = b theta where spiralling starts (m)",
+      NumberSpec{.min = 0.0, .max = 5.0});
+  }
 };
 
 /// Path length (m) of the Archimedean spiral r = b theta from its centre to angle theta (rad).

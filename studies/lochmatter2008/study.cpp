@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/paths.hpp"
 
@@ -106,13 +107,17 @@ std::string default_study_file() {
 }
 
 Study read_study(const std::string& path) {
+  std::string text, why;
+  if (!read_regular_file(path, text, why)) {
+    throw ConfigError("cannot read study file '" + path + "': " + why);
+  }
   toml::table table;
   try {
-    table = toml::parse_file(path);
+    table = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column
-        << ": cannot read the study file: " << e.description();
+        << ": invalid TOML: " << e.description();
     throw ConfigError(msg.str());
   }
   const StudyReader read(path);

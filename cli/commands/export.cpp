@@ -23,8 +23,9 @@ CLI::App* ExportCommand::add(CLI::App& app) {
 
 int ExportCommand::run() {
   std::vector<ExpandedSweep> sweeps;
-  for (const auto& f : sweep_files)
+  for (const auto& f : sweep_files) {
     sweeps.push_back(expand_sweep(read_sweep_file(f), parse_sets(sets)));
+  }
   export_store(store, sweeps, out, runs);
   return 0;
 }

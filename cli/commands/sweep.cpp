@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,7 +9,6 @@
 #include "errors.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
-#include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/io/exports.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
@@ -20,43 +18,6 @@
 namespace plumetrace::cli {
 
 namespace {
-
-std::string interval_text(double value, double lo, double hi, int digits) {
-  if (!std::isfinite(value)) return "n/a";
-  char buf[96];
-  if (std::isfinite(lo) && std::isfinite(hi)) {
-    std::snprintf(buf, sizeof buf, "%.*f [%.*f, %.*f]", digits, value, digits, lo, digits, hi);
-  } else {
-    std::snprintf(buf, sizeof buf, "%.*f", digits, value);
-  }
-  return buf;
-}
-
-std::string values_text(const ExpandedSweep& sweep, const SweepPoint& p) {
-  std::string out;
-  for (std::size_t a = 0; a < p.values.size(); ++a) {
-    const auto& v = p.values[a];
-    out += (a ? ", " : "") + sweep.def.axes[a].key + "=" +
-           (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v));
-  }
-  return out;
-}
-
-void print_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
-                   int runs_override) {
-  std::printf("%-8s %-44s %5s  %-24s %-24s\n", "sweep", "point", "runs", "success [95% CI]",
-              "overhead [95% CI]");
-  for (const auto& sweep : sweeps) {
-    const int runs = runs_per_point(sweep, runs_override);
-    for (const auto& p : sweep.points) {
-      const PointStats st = summarize(point_runs(rows, sweep.def.name, p.index, runs));
-      std::printf("%-8s %-44s %5lld  %-24s %-24s\n", sweep.def.name.c_str(),
-                  values_text(sweep, p).c_str(), static_cast<long long>(st.runs),
-                  interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2).c_str(),
-                  interval_text(st.overhead.mean, st.overhead.lo, st.overhead.hi, 3).c_str());
-    }
-  }
-}
 
 // what a sweep command works on, read alike on every rank
 struct SweepPlan {
@@ -149,7 +110,7 @@ int finish_sweep(const SweepPlan& plan, const Store& store, int runs, const Camp
   const auto rows = store.rows();
   std::filesystem::create_directories(plan.out);
   write_exports(plan.out, plan.sweeps, rows, runs);
-  print_summary(plan.sweeps, rows, runs);
+  std::fputs(summary_table(plan.sweeps, rows, runs).c_str(), stdout);
   std::printf("%s; store %s; exports in %s/\n", counts().c_str(), store.path().c_str(),
               plan.out.c_str());
   return 0;

@@ -18,4 +18,9 @@ void write_exports(const std::string& out, const std::vector<ExpandedSweep>& swe
 void export_store(const std::string& store, const std::vector<ExpandedSweep>& sweeps,
                   const std::string& out, int runs_override);
 
+/// The points' success rates and mean overheads with their 95% intervals, one line each under
+/// a header, as `plumetrace sweep` prints them.
+std::string summary_table(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                          int runs_override);
+
 }  // namespace plumetrace

@@ -608,9 +608,10 @@ PYBIND11_MODULE(_core, m) {
   m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"), py::arg("threads"),
         py::arg("share_plumes"), py::arg("controller_factory"));
   m.def("evaluate_sets", &evaluate_sets, py::arg("sets_dir"), py::arg("overrides"), py::arg("runs"),
-        py::arg("seed"), py::arg("threads"), py::arg("sets") = pt::experiment_set_names(),
+        py::arg("seed"), py::arg("threads"), py::arg("sets") = std::vector<std::string>{},
         py::arg("claims") = std::vector<int>{},
-        "the experiment sets A..I of a folder under overrides (dict of dotted keys), in memory: "
+        "the experiment sets of a folder (`sets`; empty: A..I) under overrides (dict of dotted "
+        "keys), in memory: "
         "runs per value (0: the files'), master seed (0: the files'); per-set statistics and "
         "the claims (ids in `claims`; empty: 1-11) with their verdicts, margins and parts");
 

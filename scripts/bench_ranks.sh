@@ -4,7 +4,7 @@
 # Usage: scripts/bench_ranks.sh [SWEEP.toml] [RUNS]   (default: set G with 400 runs per value)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-sweep=${1:-experiments/lochmatter2008/G.toml}
+sweep=${1:-studies/lochmatter2008/sets/G.toml}
 runs=${2:-400}
 P=build/plumetrace
 work=$(mktemp -d)

@@ -25,7 +25,7 @@
 namespace plumetrace {
 namespace {
 
-const std::string kSetsDir = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008";
+const std::string kSetsDir = std::string(PLUMETRACE_SOURCE_DIR) + "/studies/lochmatter2008/sets";
 
 Setting command_line(const std::string& key, ConfigValue value) {
   return {key, std::move(value), false, "test", Layer::kCommandLine};

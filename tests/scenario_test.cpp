@@ -59,7 +59,7 @@ TEST(Scenario, PaperLiteralFileIsThePrintedReading) {
   // every key the `printed` preset sets has the same value in scenarios/paper-literal.toml
   const Scenario file = load_scenario(kScenarios + "paper-literal.toml", {});
   const Reading printed = read_reading(
-      std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008/presets", "printed");
+      std::string(PLUMETRACE_SOURCE_DIR) + "/studies/lochmatter2008/presets", "printed");
   const Scenario preset = load_scenario(kScenarios + "lochmatter2008.toml", printed.settings);
   EXPECT_EQ(scenario_to_toml(file), scenario_to_toml(preset));
 }

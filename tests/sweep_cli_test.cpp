@@ -56,6 +56,30 @@ pid_t spawn(const std::vector<std::string>& args) {
   return pid;
 }
 
+// runs the command to its end without a shell, capturing stdout and stderr
+testing::CommandOutput run_args(const std::vector<std::string>& args) {
+  const std::string out = testing::temp_path("stdout", ".txt");
+  const std::string err = testing::temp_path("stderr", ".txt");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(kCli.c_str()));
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    freopen(out.c_str(), "w", stdout);
+    freopen(err.c_str(), "w", stderr);
+    execv(kCli.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  testing::CommandOutput o;
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  o.out = read_file(out);
+  o.err = read_file(err);
+  return o;
+}
+
 int wait_exit(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
@@ -228,6 +252,32 @@ TEST(Reproduce, AnUnknownPresetExitsTwoNamingItBeforeAnyRun) {
   EXPECT_NE(o.err.find("unknown preset 'paper-literal'"), std::string::npos) << o.err;
   EXPECT_NE(o.err.find("plugin-published"), std::string::npos) << o.err;
   EXPECT_FALSE(std::filesystem::exists(out + "/results.sqlite"));
+}
+
+// the report runs without a shell: a folder name is never parsed (issue 14)
+TEST(Reproduce, AnOutFolderWithAQuoteASpaceAndADollarGetsItsReport) {
+  const std::string out = testing::temp_path("it's a $HOME", "");
+  const auto o =
+      run_args({"reproduce", "--runs", "1", "--presets", "none", "--quiet", "--out", out});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_GT(std::filesystem::file_size(out + "/report.html"), 1000u);
+  EXPECT_TRUE(std::filesystem::exists(out + "/report.md"));
+  EXPECT_NE(o.out.find("report: " + out + "/report.html"), std::string::npos) << o.out;
+}
+
+TEST(Reproduce, AReportThatCannotBeDrawnExitsThreeKeepingTheResults) {
+  const std::string out = testing::temp_path("it's a $HOME", "");
+  std::filesystem::create_directories(out);
+  std::ofstream(out + "/figures") << "a file where the report's figures folder goes\n";
+  const auto o =
+      run_args({"reproduce", "--runs", "1", "--presets", "none", "--quiet", "--out", out});
+  EXPECT_EQ(o.code, 3);
+  EXPECT_NE(o.err.find("plumetrace: error: drawing the report failed ("), std::string::npos)
+      << o.err;
+  EXPECT_NE(o.err.find(" -m plumetrace.report '"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("the results are kept in " + out + "/"), std::string::npos) << o.err;
+  EXPECT_TRUE(std::filesystem::exists(out + "/summary.json"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs.csv"));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "lochmatter2008/study.hpp"
 #include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
@@ -138,10 +139,13 @@ TEST(SweepFile, OverrideOfAnAxisKeyIsRejected) {
 }
 
 TEST(Experiments, TheNineSetsHold4050RunsWithTheirFixedValues) {
-  const std::string dir = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008/";
+  const std::vector<SweepDef> sets = read_sets(read_study(default_study_file()));
+  EXPECT_EQ(set_names(sets),
+            (std::vector<std::string>{"A", "B", "C", "D", "E", "F", "G", "H", "I"}));
   int total = 0;
-  for (const char* name : {"A", "B", "C", "D", "E", "F", "G", "H", "I"}) {
-    const ExpandedSweep sweep = expand_sweep(read_sweep_file(dir + name + ".toml"), {});
+  for (const SweepDef& def : sets) {
+    const std::string& name = def.name;
+    const ExpandedSweep sweep = expand_sweep(def, {});
     ASSERT_EQ(sweep.def.axes.size(), 1u) << name;
     EXPECT_EQ(sweep.points.size(), 9u) << name;
     EXPECT_TRUE(sweep.def.axes[0].fixed.has_value()) << name;
@@ -154,15 +158,9 @@ TEST(Experiments, TheNineSetsHold4050RunsWithTheirFixedValues) {
   EXPECT_EQ(total, 4050);
 }
 
-const std::string kExperiments = std::string(PLUMETRACE_SOURCE_DIR) + "/experiments/lochmatter2008";
+const std::string kStudy = std::string(PLUMETRACE_SOURCE_DIR) + "/studies/lochmatter2008";
 
-std::vector<SweepDef> nine_sets() {
-  std::vector<SweepDef> defs;
-  for (const char* name : {"A", "B", "C", "D", "E", "F", "G", "H", "I"}) {
-    defs.push_back(read_sweep_file(kExperiments + "/" + name + ".toml"));
-  }
-  return defs;
-}
+std::vector<SweepDef> nine_sets() { return read_sets(read_study(default_study_file())); }
 
 // a presets folder holding one file NAME.toml with `text`
 std::string presets_folder(const std::string& name, const std::string& text) {
@@ -173,12 +171,12 @@ std::string presets_folder(const std::string& name, const std::string& text) {
 }
 
 TEST(Presets, TheFourReadingsSetTheSameKeysAndNoAxisOfTheNineSets) {
-  const auto names = preset_names(kExperiments + "/presets");
+  const auto names = preset_names(kStudy + "/presets");
   EXPECT_EQ(names,
             (std::vector<std::string>{"calibrated", "plugin", "plugin-published", "printed"}));
   std::set<std::string> first;
   for (const auto& name : names) {
-    const Reading r = read_reading(kExperiments + "/presets", name);
+    const Reading r = read_reading(kStudy + "/presets", name);
     std::set<std::string> keys;
     for (const auto& s : r.settings) keys.insert(s.key);
     if (first.empty()) first = keys;
@@ -189,8 +187,8 @@ TEST(Presets, TheFourReadingsSetTheSameKeysAndNoAxisOfTheNineSets) {
 }
 
 TEST(Presets, APresetAppliesItsKeysToEverySetAndTheAxesStillVary) {
-  const Reading printed = read_reading(kExperiments + "/presets", "printed");
-  const Reading published = read_reading(kExperiments + "/presets", "plugin-published");
+  const Reading printed = read_reading(kStudy + "/presets", "printed");
+  const Reading published = read_reading(kStudy + "/presets", "plugin-published");
   for (const auto& sweep : reading_sets(nine_sets(), printed, false)) {
     for (const auto& p : sweep.points) {
       // the paper-literal plume, from a set whose scenario file writes out the plugin's rows
@@ -215,11 +213,11 @@ TEST(Presets, APresetAppliesItsKeysToEverySetAndTheAxesStillVary) {
 }
 
 TEST(Presets, OtherReadingsSetsArePrefixedAndTheMainOnesKeepTheirNames) {
-  const Reading plugin = read_reading(kExperiments + "/presets", "plugin");
+  const Reading plugin = read_reading(kStudy + "/presets", "plugin");
   EXPECT_EQ(reading_sets(nine_sets(), plugin, false)[3].def.name, "plugin/D");
   EXPECT_EQ(reading_sets(nine_sets(), plugin, true)[3].def.name, "D");
   // the default reading adds nothing: the sets as their files define them
-  const Reading none = read_reading(kExperiments + "/presets", kDefaultReading);
+  const Reading none = read_reading(kStudy + "/presets", kDefaultReading);
   EXPECT_TRUE(none.settings.empty());
   const auto defaults = reading_sets(nine_sets(), none, true);
   EXPECT_EQ(defaults[0].points[0].config_hash,
@@ -245,7 +243,7 @@ preset = "paper-literal"
 
 TEST(Presets, AnUnknownNameIsAnErrorNamingItAndTheKnownOnes) {
   try {
-    read_reading(kExperiments + "/presets", "paper-literal");
+    read_reading(kStudy + "/presets", "paper-literal");
     FAIL() << "no error";
   } catch (const ConfigError& e) {
     const std::string msg = e.what();

@@ -9,7 +9,7 @@ The C++ core does the work; this package is a thin layer over it. Import path: t
     s["controller.algorithm"] = "casting"  # ... or by its dotted path
     r = pt.run(s, seed=1, trial=0)         # metrics as in `plumetrace run --json`
     r["trajectory"]["x"]                   # NumPy arrays
-    rows = pt.sweep("experiments/lochmatter2008/A.toml", runs=4)
+    rows = pt.sweep("studies/lochmatter2008/sets/A.toml", runs=4)
     rows.to_numpy()["success"]             # or rows.to_pandas() when pandas is installed
 
 Submodules: ``plumetrace.controllers`` (write your own controller), ``plumetrace.env``

@@ -4,7 +4,7 @@
     from plumetrace import plots
     r = pt.run(algorithm="surge-spiral", seed=1, snapshot_interval=10.0)
     ax = plots.trajectory(r, scenario=pt.Scenario())
-    rows = pt.sweep("experiments/lochmatter2008/A.toml", runs=10)
+    rows = pt.sweep("studies/lochmatter2008/sets/A.toml", runs=10)
     fig = plots.sweep_bars(rows, "casting.beta_deg")
 """
 

@@ -19,7 +19,7 @@ from plumetrace.calibrate import search  # noqa: E402
 from plumetrace.calibrate.study import CALIBRATION_CLAIMS, HELD_OUT_CLAIMS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-SETS = ROOT / "experiments" / "lochmatter2008"
+SETS = ROOT / "studies" / "lochmatter2008" / "sets"
 SCENARIO = ROOT / "scenarios" / "lochmatter2008.toml"
 
 UNKNOWNS = """

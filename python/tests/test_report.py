@@ -160,7 +160,7 @@ def make_summary():
         "arena": {"x_min": 0, "x_max": 16, "y_min": -2, "y_max": 2},
         "source": {"x": 1, "y": 0, "radius": 0.12, "success_radius": 0.185},
         "config_toml": "[plume]\nnoise_mode = \"velocity\"\n# <not a tag> & more\n",
-        "sweeps": [{"name": s[0], "file": f"experiments/lochmatter2008/{s[0]}.toml",
+        "sweeps": [{"name": s[0], "file": f"studies/lochmatter2008/sets/{s[0]}.toml",
                     "definition": {"key": s[2], "values": s[4]}} for s in SETS],
     }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <tuple>
 
+#include "lochmatter2008/study.hpp"
 #include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
@@ -14,13 +15,12 @@
 
 namespace plumetrace {
 
-const std::vector<std::string>& experiment_set_names() {
-  static const std::vector<std::string> names = {"A", "B", "C", "D", "E", "F", "G", "H", "I"};
-  return names;
+std::vector<std::string> experiment_set_names() {
+  return set_names(read_sets(read_study(default_study_file())));
 }
 
 std::vector<ExpandedSweep> calibration_sweeps(const CalibrationOptions& options) {
-  const std::vector<std::string>& names =
+  const std::vector<std::string> names =
       options.sets.empty() ? experiment_set_names() : options.sets;
   std::vector<ExpandedSweep> sweeps;
   for (const std::string& name : names) {

@@ -13,14 +13,15 @@
 
 namespace plumetrace {
 
-/// The names of the paper's nine experiment sets, "A".."I".
-const std::vector<std::string>& experiment_set_names();
+/// The names of the paper's nine experiment sets, "A".."I", as the repository's study file
+/// lists them (studies/lochmatter2008/study.toml).
+std::vector<std::string> experiment_set_names();
 
 /// What to evaluate: the experiment sets of a folder under one reading of the unknowns.
 struct CalibrationOptions {
-  /// Folder holding the sweep files NAME.toml (experiments/lochmatter2008).
+  /// Folder holding the sweep files NAME.toml (studies/lochmatter2008/sets).
   std::string sets_dir;
-  /// Which sets to run (empty: all nine, A..I).
+  /// Which sets to run (empty: all nine, as experiment_set_names).
   std::vector<std::string> sets;
   /// Settings applied on top of every sweep's own, as `--set` would (they may not name an axis).
   std::vector<Setting> overrides;

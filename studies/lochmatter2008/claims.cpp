@@ -713,27 +713,31 @@ struct AlgorithmAtFixed {
   bool ok = false;
 };
 
-AlgorithmAtFixed at_fixed(const Sets& sets, const char* name,
-                          std::initializer_list<const char*> set_names) {
+// `set_names` are the sets of one algorithm; it is named as its sets say (their first present),
+// else by the sets ("A-C")
+AlgorithmAtFixed at_fixed(const Sets& sets, std::initializer_list<const char*> set_names) {
+  AlgorithmAtFixed out;
   std::vector<const SetStats*> with_fixed;
   for (const char* s : set_names) {
+    if (const auto it = sets.find(s); it != sets.end() && out.name.empty()) {
+      out.name = it->second.algorithm;
+    }
     const Needed n = need(sets, {s}, 1);
     if (n.problem.empty() && n.sets[0]->fixed_index >= 0) with_fixed.push_back(n.sets[0]);
   }
-  AlgorithmAtFixed out;
-  out.name = name;
+  if (out.name.empty()) out.name = std::string(*set_names.begin()) + "-" + *(set_names.end() - 1);
   if (with_fixed.empty()) return out;
   int distinct = 0;
   out.group = pool_sets(with_fixed, true, &distinct);
-  out.group.label = std::string(name) + " (" + out.group.label + format(", %d distinct)", distinct);
+  out.group.label = out.name + " (" + out.group.label + format(", %d distinct)", distinct);
   out.ok = true;
   return out;
 }
 
 Decision claim10(const Sets& sets) {
-  const AlgorithmAtFixed cast = at_fixed(sets, "casting", {"A", "B", "C"});
-  const AlgorithmAtFixed spiral = at_fixed(sets, "surge-spiral", {"D", "E", "F"});
-  const AlgorithmAtFixed surge = at_fixed(sets, "surge-cast", {"G", "H", "I"});
+  const AlgorithmAtFixed cast = at_fixed(sets, {"A", "B", "C"});
+  const AlgorithmAtFixed spiral = at_fixed(sets, {"D", "E", "F"});
+  const AlgorithmAtFixed surge = at_fixed(sets, {"G", "H", "I"});
   std::vector<std::string> missing;
   for (const auto* a : {&cast, &spiral, &surge}) {
     if (!a->ok) missing.push_back(a->name);
@@ -760,15 +764,16 @@ Decision claim10(const Sets& sets) {
                     pct_interval(d));
   };
   std::vector<Part> parts;
-  parts.push_back(success(sp, c, "casting below surge-spiral in success"));
-  parts.push_back(success(sc, c, "casting below surge-cast in success"));
-  parts.push_back(overhead(c, sp, "casting above surge-spiral in overhead"));
-  parts.push_back(overhead(c, sc, "casting above surge-cast in overhead"));
+  const std::string &cn = cast.name, &spn = spiral.name, &scn = surge.name;
+  parts.push_back(success(sp, c, cn + " below " + spn + " in success"));
+  parts.push_back(success(sc, c, cn + " below " + scn + " in success"));
+  parts.push_back(overhead(c, sp, cn + " above " + spn + " in overhead"));
+  parts.push_back(overhead(c, sc, cn + " above " + scn + " in overhead"));
   const Interval ds = rate_difference(sc.rate, sp.rate);
   parts.push_back(
-      part(within(ds, kSuccessMargin),
-           "surge-cast comparable to surge-spiral in success: " + num(sc.rate.p() - sp.rate.p()) +
-               " " + interval(ds) + " vs +-" + num(kSuccessMargin)));
+      part(within(ds, kSuccessMargin), scn + " comparable to " + spn +
+                                           " in success: " + num(sc.rate.p() - sp.rate.p()) + " " +
+                                           interval(ds) + " vs +-" + num(kSuccessMargin)));
   const Interval dov = relative_difference(sc.overhead, sp.overhead, sp.overhead);
   parts.push_back(
       part(within(dov, kNegligibleOverhead),
@@ -850,6 +855,7 @@ Decision claim11(const Sets& sets) {
   const Needed n = need(sets, {"A", "B", "D", "E", "G", "H"}, 3);
   if (!n.problem.empty()) return unclear_because(n.problem);
   std::vector<Part> parts;
+  // each algorithm's parameter-specific set, then its d_lost set
   for (int a = 0; a < 3; ++a) {
     const Importance specific = importance(*n.sets[2 * a]);
     const Importance lost = importance(*n.sets[2 * a + 1]);

@@ -264,7 +264,7 @@ def _readings_section(out_dir: Path, fig_dir: Path, summary: dict, written: list
     if not readings:
         return Section("readings", title, [Para(["This summary has no readings."])])
     keys = list(dict.fromkeys(k for r in readings for k in (r.get("settings") or {})))
-    blocks = [Para(["Each reading is a preset file (", ("code", "experiments/lochmatter2008/"
+    blocks = [Para(["Each reading is a preset file (", ("code", "studies/lochmatter2008/"
                                                                 "presets/NAME.toml"),
                     ") applied on top of every experiment set; ", ("code", "default"),
                     " adds nothing to the sets' own scenario (its column shows the built-in "

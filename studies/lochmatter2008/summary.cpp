@@ -33,13 +33,14 @@ using detail::number_or_null;
 using detail::stats_json;
 using detail::value_to_json;
 
-const char* const kSetNames[] = {"A", "B", "C", "D", "E", "F", "G", "H", "I"};
-
 double as_number(const ConfigValue& v) {
   if (const auto* d = std::get_if<double>(&v)) return *d;
   if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
   return NAN;
 }
+
+// the last part of a dotted key: "supervisor.success_radius" -> "success_radius"
+std::string short_key(const std::string& key) { return key.substr(key.rfind('.') + 1); }
 
 std::string as_text(const ConfigValue& v) {
   return std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v);
@@ -50,6 +51,18 @@ const ExpandedSweep* find(const std::vector<ExpandedSweep>& sweeps, const std::s
     if (s.def.name == name) return &s;
   }
   return nullptr;
+}
+
+// the first experiment set under a reading (its scenario gives the detection map)
+const ExpandedSweep* first_set(const std::vector<ExpandedSweep>& sweeps, const ReproduceInfo& info,
+                               const std::string& reading, bool main) {
+  return info.sets.empty() ? nullptr
+                           : find(sweeps, reading_sweep_name(reading, main, info.sets.front()));
+}
+
+bool is_trajectory_set(const ReproduceInfo& info, const std::string& set) {
+  return std::find(info.trajectory_sets.begin(), info.trajectory_sets.end(), set) !=
+         info.trajectory_sets.end();
 }
 
 json point_json(const PointStats& st, const SweepPoint& p) {
@@ -130,10 +143,11 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// the failed runs of each algorithm at its fixed values (sets A, D, G): counts by outcome over
-// all of them, and where the first kFailuresExamined (by trial) end, re-run on `threads` threads
+// the failed runs of each algorithm at its fixed values (the trajectory sets): counts by
+// outcome over all of them, and where the first kFailuresExamined (by trial) end, re-run on
+// `threads` threads
 json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
-                   int runs_override, int threads) {
+                   const ReproduceInfo& info) {
   struct Job {
     const Scenario* scenario;
     RunResult run;
@@ -141,10 +155,10 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
   };
   std::vector<Job> jobs;
   json algorithms = json::array();
-  for (const char* name : {"A", "D", "G"}) {
+  for (const std::string& name : info.trajectory_sets) {
     const ExpandedSweep* sweep = find(sweeps, name);
     if (!sweep) continue;
-    const int runs = runs_per_point(*sweep, runs_override);
+    const int runs = runs_per_point(*sweep, info.runs_override);
     const SetStats st = set_stats(*sweep, rows, runs);
     if (st.fixed_index < 0) continue;
     const SweepPoint& p = sweep->points[static_cast<std::size_t>(st.fixed_index)];
@@ -186,7 +200,7 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
   };
   std::vector<std::thread> pool;
   try {
-    for (int t = 1; t < std::max(1, threads); ++t) pool.emplace_back(work);
+    for (int t = 1; t < std::max(1, info.threads); ++t) pool.emplace_back(work);
   } catch (const std::system_error&) {
     // why: the re-runs share one counter, so fewer threads than asked only take longer
   }
@@ -282,7 +296,7 @@ json claim_json(const ClaimResult& c) {
 // one reading: its settings, claims, fixed-value statistics and detection map (maps are shared
 // between readings whose plume and sensor height are the same)
 json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
-                  const std::vector<RunRow>& rows, int runs_override,
+                  const std::vector<RunRow>& rows, const ReproduceInfo& info,
                   const std::set<std::string>& compared_keys, std::map<std::string, json>& maps);
 
 }  // namespace
@@ -304,19 +318,18 @@ std::vector<ExpandedSweep> reading_sets(const std::vector<SweepDef>& sets, const
 namespace {
 
 json reading_json(const Reading& reading, bool main, const std::vector<ExpandedSweep>& sweeps,
-                  const std::vector<RunRow>& rows, int runs_override,
+                  const std::vector<RunRow>& rows, const ReproduceInfo& info,
                   const std::set<std::string>& compared_keys, std::map<std::string, json>& maps) {
   json settings = json::object();
   for (const auto& s : reading.settings) settings[s.key] = value_to_json(s.value);
   std::map<std::string, SetStats> by_name;
   json fixed = json::array();
-  for (const char* name : kSetNames) {
-    const ExpandedSweep* sweep = find(sweeps, reading_sweep_name(reading.name, main, name));
+  for (const std::string& set : info.sets) {
+    const ExpandedSweep* sweep = find(sweeps, reading_sweep_name(reading.name, main, set));
     if (!sweep) continue;
-    const SetStats st = set_stats(*sweep, rows, runs_per_point(*sweep, runs_override));
-    by_name[name] = st;
-    const std::string set = name;
-    if ((set == "A" || set == "D" || set == "G") && st.fixed_index >= 0) {
+    const SetStats st = set_stats(*sweep, rows, runs_per_point(*sweep, info.runs_override));
+    by_name[set] = st;
+    if (is_trajectory_set(info, set) && st.fixed_index >= 0) {
       const auto i = static_cast<std::size_t>(st.fixed_index);
       json p = point_json(st.points[i], sweep->points[i]);
       p["algorithm"] = st.algorithm;
@@ -344,7 +357,7 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
            {"unclear", unclear},
            {"claims", claims},
            {"fixed", fixed}};
-  if (const ExpandedSweep* a = find(sweeps, reading_sweep_name(reading.name, main, "A"))) {
+  if (const ExpandedSweep* a = first_set(sweeps, info, reading.name, main)) {
     const Scenario& sc = a->points.at(0).scenario;
     const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
     if (!maps.count(key)) maps[key] = detection_map(sc, a->def.seed);
@@ -403,7 +416,7 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   // the nine sets and the claims
   json sets = json::array();
   std::map<std::string, SetStats> by_name;
-  for (const char* name : kSetNames) {
+  for (const std::string& name : info.sets) {
     const ExpandedSweep* sweep = find(sweeps, name);
     if (!sweep) continue;
     const int runs = runs_per_point(*sweep, info.runs_override);
@@ -438,12 +451,13 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
       variants.push_back(v);
     }
   };
-  if (const ExpandedSweep* radius = find(sweeps, "radius")) {
+  if (const ExpandedSweep* radius = find(sweeps, info.radius)) {
     const int runs = runs_per_point(*radius, info.runs_override);
+    const std::string varied = short_key(radius->def.axes.at(1).key);
     for (const auto& p : radius->points) {
-      const std::string variant = "success_radius=" + as_text(p.values.at(1));
+      const std::string variant = varied + "=" + as_text(p.values.at(1));
       add_variant(variant);
-      json row = point_json(summarize(point_runs(rows, "radius", p.index, runs)), p);
+      json row = point_json(summarize(point_runs(rows, radius->def.name, p.index, runs)), p);
       row["algorithm"] = as_text(p.values.at(0));
       row["variant"] = variant;
       sens_rows.push_back(row);
@@ -454,7 +468,7 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   // Fig. 6: one successful and one failed run per algorithm at the fixed values, over the
   // detection map
   json trajectories = json::array(), missing = json::array();
-  for (const char* name : {"A", "D", "G"}) {
+  for (const std::string& name : info.trajectory_sets) {
     const ExpandedSweep* sweep = find(sweeps, name);
     if (!sweep) continue;
     const int runs = runs_per_point(*sweep, info.runs_override);
@@ -470,7 +484,7 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   }
   doc["trajectories"] = trajectories;
   doc["trajectories_missing"] = missing;
-  doc["failures"] = failures_json(sweeps, rows, info.runs_override, info.threads);
+  doc["failures"] = failures_json(sweeps, rows, info);
 
   // each reading's claims, fixed values and detection map; the main one's map is shared
   std::map<std::string, json> maps;
@@ -480,11 +494,11 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   }
   json readings = json::array();
   for (std::size_t i = 0; i < info.readings.size(); ++i) {
-    readings.push_back(reading_json(info.readings[i], i == 0, sweeps, rows, info.runs_override,
-                                    compared_keys, maps));
+    readings.push_back(
+        reading_json(info.readings[i], i == 0, sweeps, rows, info, compared_keys, maps));
   }
   doc["readings"] = readings;
-  if (const ExpandedSweep* a = find(sweeps, "A")) {
+  if (const ExpandedSweep* a = first_set(sweeps, info, "", true)) {
     const Scenario& s = a->points.at(0).scenario;
     if (!readings.empty() && readings[0].contains("detection_map")) {
       doc["detection_map"] = readings[0]["detection_map"];
@@ -513,16 +527,11 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
   return doc.dump(1);
 }
 
-std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs) {
+std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets,
+                                         const std::vector<Axis>& front, int runs) {
   std::vector<SweepDef> out;
   for (SweepDef def : sets) {
-    std::vector<Axis> axes{
-        {"plume.noise_mode",
-         {std::string("velocity"), std::string("per_step"), std::string("wiener")},
-         "noise mode",
-         std::nullopt},
-        {"plume.kernel", {std::string("gaussian"), std::string("printed")}, "kernel", std::nullopt},
-        {"supervisor.success_radius", {0.185, 0.3, 0.45, 0.6}, "success radius (m)", std::nullopt}};
+    std::vector<Axis> axes = front;
     axes.insert(axes.end(), def.axes.begin(), def.axes.end());
     def.axes = axes;
     def.runs = runs;
@@ -531,51 +540,67 @@ std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int 
   return out;
 }
 
-std::vector<SensitivityRow> sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
-                                               const std::vector<RunRow>& rows, int runs) {
-  std::vector<SensitivityRow> matrix;
+SensitivityMatrix sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
+                                     const std::vector<RunRow>& rows, int runs, std::size_t front) {
+  SensitivityMatrix matrix;
   if (sweeps.empty()) return matrix;
   const auto& axes = sweeps.front().def.axes;
-  for (const auto& noise : axes[0].values) {
-    for (const auto& kernel : axes[1].values) {
-      for (const auto& radius : axes[2].values) {
-        // each set restricted to the points of this combination, varied along its own axis
-        std::map<std::string, SetStats> sets;
-        for (const auto& sweep : sweeps) {
-          std::vector<int> selected;
-          for (const auto& p : sweep.points) {
-            if (as_text(p.values[0]) == as_text(noise) && as_text(p.values[1]) == as_text(kernel) &&
-                as_number(p.values[2]) == as_number(radius)) {
-              selected.push_back(p.index);
-            }
-          }
-          sets[sweep.def.name] = set_stats(sweep, rows, runs, selected, 3);
+  matrix.axes.assign(axes.begin(), axes.begin() + static_cast<std::ptrdiff_t>(front));
+  // every combination of the front axes' values, the first axis varying slowest
+  std::vector<std::size_t> at(front, 0);
+  for (bool more = front > 0; more;) {
+    SensitivityRow row;
+    for (std::size_t a = 0; a < front; ++a) row.values.push_back(axes[a].values[at[a]]);
+    // each set restricted to the points of this combination, varied along its own axis
+    std::map<std::string, SetStats> sets;
+    for (const auto& sweep : sweeps) {
+      std::vector<int> selected;
+      for (const auto& p : sweep.points) {
+        if (std::equal(row.values.begin(), row.values.end(), p.values.begin(),
+                       [](const ConfigValue& a, const ConfigValue& b) {
+                         return std::holds_alternative<std::string>(a)
+                                    ? as_text(a) == as_text(b)
+                                    : as_number(a) == as_number(b);
+                       })) {
+          selected.push_back(p.index);
         }
-        matrix.push_back(
-            {as_text(noise), as_text(kernel), as_number(radius), evaluate_claims(sets)});
       }
+      sets[sweep.def.name] = set_stats(sweep, rows, runs, selected, front);
+    }
+    row.claims = evaluate_claims(sets);
+    matrix.rows.push_back(std::move(row));
+    // the next combination
+    more = false;
+    for (std::size_t a = front; a-- > 0;) {
+      if (++at[a] < axes[a].values.size()) {
+        more = true;
+        break;
+      }
+      at[a] = 0;
     }
   }
   return matrix;
 }
 
-std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs, double elapsed) {
+std::string sensitivity_json(const SensitivityMatrix& matrix, int runs, double elapsed) {
   json claims = json::array(), out_rows = json::array();
-  if (!matrix.empty()) {
-    for (const auto& c : matrix.front().claims) claims.push_back({{"id", c.id}, {"text", c.text}});
+  if (!matrix.rows.empty()) {
+    for (const auto& c : matrix.rows.front().claims) {
+      claims.push_back({{"id", c.id}, {"text", c.text}});
+    }
   }
-  for (const auto& row : matrix) {
+  for (const auto& row : matrix.rows) {
     json verdicts = json::array();
     int held = 0;
     for (const auto& c : row.claims) {
       verdicts.push_back(std::string(verdict_name(c.verdict)));
       held += c.verdict == Verdict::kHolds;
     }
-    out_rows.push_back({{"noise_mode", row.noise_mode},
-                        {"kernel", row.kernel},
-                        {"success_radius", row.success_radius},
-                        {"verdicts", verdicts},
-                        {"held", held}});
+    json r{{"verdicts", verdicts}, {"held", held}};
+    for (std::size_t a = 0; a < matrix.axes.size(); ++a) {
+      r[short_key(matrix.axes[a].key)] = value_to_json(row.values[a]);
+    }
+    out_rows.push_back(r);
   }
   return json{{"plumetrace_sensitivity", 1},
               {"version", std::string(version())},
@@ -586,23 +611,42 @@ std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs
       .dump(1);
 }
 
-std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int runs,
-                                 double elapsed) {
+std::string sensitivity_markdown(const SensitivityMatrix& matrix, int runs, double elapsed) {
   std::ostringstream md;
+  std::string names;
+  for (std::size_t a = 0; a < matrix.axes.size(); ++a) {
+    std::string name = short_key(matrix.axes[a].key);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    names += (a == 0 ? "" : a + 1 == matrix.axes.size() ? " and " : ", ") + name;
+  }
   md << "# Sensitivity study: which claims hold under which model reading\n\n"
      << "Each row reruns the nine experiment sets (docs/experiments.md) with " << runs
-     << " runs per value under one combination of noise mode, kernel and success radius "
-        "(docs/experiments.md, `plumetrace sensitivity`). Cells: H holds, - does not hold, "
+     << " runs per value under one combination of " << names
+     << " (docs/experiments.md, `plumetrace sensitivity`). Cells: H holds, - does not hold, "
         "? unclear (rules in docs/claims.md). Computed in "
-     << static_cast<long>(elapsed) << " s.\n\n| noise mode | kernel | success radius |";
-  const std::size_t n = matrix.empty() ? 0 : matrix.front().claims.size();
-  for (std::size_t i = 0; i < n; ++i) md << " " << matrix.front().claims[i].id << " |";
-  md << " held |\n|---|---|---|";
-  for (std::size_t i = 0; i <= n; ++i) md << "---|";
+     << static_cast<long>(elapsed) << " s.\n\n|";
+  for (const auto& axis : matrix.axes) {
+    std::string name = short_key(axis.key);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    md << " " << name << " |";
+  }
+  const auto& first = matrix.rows.empty() ? std::vector<ClaimResult>{} : matrix.rows.front().claims;
+  for (const auto& c : first) md << " " << c.id << " |";
+  md << " held |\n|";
+  for (std::size_t i = 0; i < matrix.axes.size() + first.size() + 1; ++i) md << "---|";
   md << "\n";
-  for (const auto& row : matrix) {
+  for (const auto& row : matrix.rows) {
     int held = 0;
-    md << "| " << row.noise_mode << " | " << row.kernel << " | " << row.success_radius << " |";
+    md << "|";
+    for (const auto& v : row.values) {
+      md << " ";
+      if (const auto* d = std::get_if<double>(&v)) {
+        md << *d;
+      } else {
+        md << as_text(v);
+      }
+      md << " |";
+    }
     for (const auto& c : row.claims) {
       md << " "
          << (c.verdict == Verdict::kHolds         ? "H"
@@ -613,9 +657,9 @@ std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int 
     }
     md << " " << held << " |\n";
   }
-  if (!matrix.empty()) {
+  if (!first.empty()) {
     md << "\nClaims:\n\n";
-    for (const auto& c : matrix.front().claims) md << c.id << ". " << c.text << "\n";
+    for (const auto& c : first) md << c.id << ". " << c.text << "\n";
   }
   return md.str();
 }

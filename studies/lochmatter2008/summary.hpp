@@ -38,45 +38,53 @@ inline constexpr int kFailuresExamined = 25;
 
 /// What `reproduce` hands to the report beyond the store's rows.
 struct ReproduceInfo {
-  std::string command;            ///< the command line
-  std::string preset;             ///< the main reading's name
-  std::vector<Reading> readings;  ///< every reading run, the main one first
-  int runs_override = 0;          ///< --runs (0: the sweep files')
-  int threads = 0;                ///< worker threads used
-  double elapsed = 0.0;           ///< seconds spent running (this call)
-  std::int64_t computed = -1;     ///< runs computed by this call (-1: not known)
-  std::string base_config;        ///< the resolved base scenario (TOML)
+  std::vector<std::string> sets;             ///< the experiment sets' names, in order
+  std::vector<std::string> trajectory_sets;  ///< the sets whose fixed values give Fig. 6
+  std::string radius;                        ///< the success-radius sweep's name
+  std::string command;                       ///< the command line
+  std::string preset;                        ///< the main reading's name
+  std::vector<Reading> readings;             ///< every reading run, the main one first
+  int runs_override = 0;                     ///< --runs (0: the sweep files')
+  int threads = 0;                           ///< worker threads used
+  double elapsed = 0.0;                      ///< seconds spent running (this call)
+  std::int64_t computed = -1;                ///< runs computed by this call (-1: not known)
+  std::string base_config;                   ///< the resolved base scenario (TOML)
 };
 
-/// Builds summary.json for the report (schema in docs/report.md): the nine sets' statistics,
-/// the claims, the sensitivity rows, one successful and one failed trajectory per algorithm at
-/// the fixed values (re-run from seed and trial), the plume's detection map, where failed runs
-/// end (up to kFailuresExamined re-run per algorithm), and for each reading its claims, its
-/// fixed-value statistics and its detection map.
+/// Builds summary.json for the report (schema in docs/report.md): the sets' statistics, the
+/// claims, the sensitivity rows (of the radius sweep), one successful and one failed trajectory
+/// per trajectory set at its fixed values (re-run from seed and trial), the plume's detection
+/// map, where failed runs end (up to kFailuresExamined re-run per trajectory set), and for each
+/// reading its claims, its fixed-value statistics and its detection map.
 std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
                           const ReproduceInfo& info);
 
 /// One row of the sensitivity claims matrix.
 struct SensitivityRow {
-  std::string noise_mode;           ///< plume.noise_mode
-  std::string kernel;               ///< plume.kernel
-  double success_radius = 0.0;      ///< supervisor.success_radius (m)
+  std::vector<ConfigValue> values;  ///< one per sensitivity axis
   std::vector<ClaimResult> claims;  ///< claims 1-11 under this combination
 };
 
-/// The sensitivity study's sweeps: each of the nine sets with the axes noise_mode, kernel and
-/// success radius put in front of its own (docs/experiments.md, `plumetrace sensitivity`).
-std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets, int runs);
+/// The sensitivity claims matrix: one row per combination of the axes' values.
+struct SensitivityMatrix {
+  std::vector<Axis> axes;            ///< the sensitivity axes
+  std::vector<SensitivityRow> rows;  ///< the first axis varying slowest
+};
 
-/// The claims matrix from the sensitivity sweeps' rows.
-std::vector<SensitivityRow> sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
-                                               const std::vector<RunRow>& rows, int runs);
+/// The sensitivity study's sweeps: each set with the axes `front` put in front of its own and
+/// `runs` runs per point (docs/experiments.md, `plumetrace sensitivity`).
+std::vector<SweepDef> sensitivity_sweeps(const std::vector<SweepDef>& sets,
+                                         const std::vector<Axis>& front, int runs);
 
-/// sensitivity.json (schema in docs/report.md).
-std::string sensitivity_json(const std::vector<SensitivityRow>& matrix, int runs, double elapsed);
+/// The claims matrix from the sensitivity sweeps' rows; the first `front` axes of every sweep
+/// are the sensitivity axes.
+SensitivityMatrix sensitivity_matrix(const std::vector<ExpandedSweep>& sweeps,
+                                     const std::vector<RunRow>& rows, int runs, std::size_t front);
+
+/// sensitivity.json (schema in docs/report.md): a row names each axis by its key's last part.
+std::string sensitivity_json(const SensitivityMatrix& matrix, int runs, double elapsed);
 
 /// The claims matrix as a Markdown table.
-std::string sensitivity_markdown(const std::vector<SensitivityRow>& matrix, int runs,
-                                 double elapsed);
+std::string sensitivity_markdown(const SensitivityMatrix& matrix, int runs, double elapsed);
 
 }  // namespace plumetrace

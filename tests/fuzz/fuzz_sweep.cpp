@@ -21,19 +21,23 @@ namespace {
 // expand; it is below any cap the library sets (F10), so it hides no finding of the parser
 constexpr std::size_t kMaxPoints = 64;
 
-// the folder the sweep file is written to: two levels below a copy of scenarios/, so that the
-// experiments' `scenario = "../../scenarios/lochmatter2008.toml"` resolves as in the repository
+// the folder the sweep file is written to: as deep below a copy of scenarios/ as the study's
+// sets, so that their `scenario = "../../../scenarios/lochmatter2008.toml"` resolves as in the
+// repository; the golden sweep's and radius.toml's "../../scenarios/..." find a second copy
 std::filesystem::path sweep_folder() {
   static const std::filesystem::path folder = [] {
     const auto root = pf::scratch();
-    std::filesystem::create_directories(root / "scenarios");
-    std::filesystem::create_directories(root / "experiments" / "set");
-    for (const char* name : {"lochmatter2008.toml", "paper-literal.toml"}) {
-      std::filesystem::copy_file(std::filesystem::path(PLUMETRACE_SOURCE_DIR) / "scenarios" / name,
-                                 root / "scenarios" / name,
-                                 std::filesystem::copy_options::overwrite_existing);
+    const auto sets = root / "studies" / "lochmatter2008" / "sets";
+    std::filesystem::create_directories(sets);
+    for (const auto& scenarios : {root / "scenarios", root / "studies" / "scenarios"}) {
+      std::filesystem::create_directories(scenarios);
+      for (const char* name : {"lochmatter2008.toml", "paper-literal.toml"}) {
+        std::filesystem::copy_file(
+            std::filesystem::path(PLUMETRACE_SOURCE_DIR) / "scenarios" / name, scenarios / name,
+            std::filesystem::copy_options::overwrite_existing);
+      }
     }
-    return root / "experiments" / "set";
+    return sets;
   }();
   return folder;
 }

@@ -27,7 +27,7 @@ with_sets() {
 s="$corpus/scenario"
 cp scenarios/lochmatter2008.toml "$s/lochmatter2008.toml"
 cp scenarios/paper-literal.toml "$s/paper-literal.toml"
-for f in experiments/lochmatter2008/presets/*.toml; do cp "$f" "$s/preset-$(basename "$f")"; done
+for f in studies/lochmatter2008/presets/*.toml; do cp "$f" "$s/preset-$(basename "$f")"; done
 "$P" config >"$s/resolved.toml"
 with_sets scenarios/lochmatter2008.toml controller.algorithm=surge-spiral plume.preset=printed \
   wind.vx=0.5 supervisor.timeout=inf >"$s/sets.toml"
@@ -43,7 +43,7 @@ with_sets /dev/null sim.dt nosuch.key=1 'controller.algorithm=' >"$s/bad-sets.to
 
 # sweep: the experiment sets, the golden sweep, the store seeds' sweep, --set lines, mistakes
 w="$corpus/sweep"
-for f in experiments/lochmatter2008/*.toml; do cp "$f" "$w/$(basename "$f")"; done
+for f in studies/lochmatter2008/sets/*.toml studies/lochmatter2008/*.toml; do cp "$f" "$w/$(basename "$f")"; done
 cp tests/golden/sweep.toml "$w/golden.toml"
 cp tests/fuzz/store_sweep.toml "$w/store_sweep.toml"
 with_sets tests/golden/sweep.toml supervisor.timeout=60 robot.start_y=0.5 >"$w/sets.toml"

@@ -50,8 +50,8 @@ def sources(root: Path):
     for f in sorted((root / "studies").rglob("*.[ch]pp")):
         rel = f.relative_to(root / "studies").with_suffix("")
         yield f, "studies/" + str(rel), "studies"
-    for f in sorted((root / "cli").glob("*.[ch]pp")):
-        yield f, "cli/" + f.stem, "cli"
+    for f in sorted((root / "cli").rglob("*.[ch]pp")):
+        yield f, "cli/" + str(f.relative_to(root / "cli").with_suffix("")), "cli"
     bindings = root / "python/bindings.cpp"
     if bindings.exists():
         yield bindings, "python/bindings", "python"
@@ -74,6 +74,9 @@ def resolve(root: Path, f: Path, name: str):
                 pass
     if (root / "studies" / name).exists():
         return "studies/" + str(Path(name).with_suffix(""))
+    # the CLI's own headers are found from its folder (cli/commands/x.cpp: "errors.hpp")
+    if (root / "cli" / name).exists() and (root / "cli") in f.parents:
+        return "cli/" + str(Path(name).with_suffix(""))
     return None if "/" not in name and not name.endswith(".hpp") else "?" + name
 
 

@@ -3,7 +3,7 @@
     python3 -m plumetrace.calibrate STUDY.toml [--out DIR] [--trials N] [--threads N] [--quiet]
 
 searches the unknowns the study file names (from an unknowns file such as
-experiments/lochmatter2008/unknowns.toml) with Optuna's TPE sampler, scoring only the
+studies/lochmatter2008/unknowns.toml) with Optuna's TPE sampler, scoring only the
 calibration claims; reruns the best candidates with a fresh seed to evaluate the held-out
 claims; writes DIR/study.sqlite (resumable), DIR/validation.json, DIR/best.toml and
 DIR/calibration.html. Formats and the score: docs/calibration.md.

@@ -248,7 +248,7 @@ def _fig(out_dir: Path, path: Path, caption: str, alt: str) -> Fig:
 # python/plumetrace/report/page.py there, or a copy in BUILD/python/plumetrace/report/ of a build
 # folder inside it.
 REPO_ROOT = next((p for p in Path(__file__).resolve().parents[2:5]
-                  if (p / "docs").is_dir() and (p / "experiments").is_dir()),
+                  if (p / "docs").is_dir() and (p / "studies").is_dir()),
                  Path(__file__).resolve().parents[3])
 
 

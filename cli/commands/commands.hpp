@@ -1,0 +1,140 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "options.hpp"
+#include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/sim/probe.hpp"
+#include "plumetrace/view/viewer.hpp"
+
+// One struct per subcommand: its options, `add` (registers them) and `run` (after parsing).
+namespace plumetrace::cli {
+
+/// A subcommand of plumetrace.
+class Command {
+ public:
+  virtual ~Command() = default;
+  /// Registers the subcommand and its options on `app`; returns it.
+  virtual CLI::App* add(CLI::App& app) = 0;
+  /// Runs it after a successful parse; returns the exit code (errors are thrown).
+  virtual int run() = 0;
+  /// Whether it may run across the processes of an MPI job.
+  virtual bool runs_on_ranks() const { return false; }
+};
+
+/// `plumetrace run [SCENARIO] ...`: one run, its metrics, and its trace or view if asked.
+struct RunCommand final : Command {
+  ScenarioOptions scenario;
+  std::string seed = "1";
+  std::string trial = "0";
+  std::string trace_path;
+  double snapshot_interval = 1.0;
+  CLI::Option* snapshot_option = nullptr;
+  bool json = false;
+  std::string view_path;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace view TRACE.json ...`: the viewer or the figure of a recorded run.
+struct ViewCommand final : Command {
+  std::string trace;
+  std::string output;
+  ViewerOptions options;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace probe [SCENARIO] --points ...`: the plume alone, sampled at points.
+struct ProbeCommand final : Command {
+  ScenarioOptions scenario;
+  std::string points;
+  ProbeOptions options;
+  std::string seed = "1";
+  bool json = false;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace config [SCENARIO] ...`: the fully resolved configuration.
+struct ConfigCommand final : Command {
+  ScenarioOptions scenario;
+  bool json = false;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace sweep SWEEP.toml ...`: a sweep file's grid of runs into a results store, across
+/// the ranks under mpirun.
+struct SweepCommand final : Command {
+  std::string file;
+  int runs = 0;
+  int threads = 0;
+  std::string store;
+  std::string out;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  bool fresh = false;
+  bool no_share = false;
+  std::string shard;
+  /// The MPI job, joined by run() and left when the command is destroyed: after main has
+  /// reported any error.
+  std::optional<Ranks> ranks;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+  bool runs_on_ranks() const override { return true; }
+};
+
+/// `plumetrace export SWEEP.toml... --store FILE --out DIR`: a store's exports.
+struct ExportCommand final : Command {
+  std::vector<std::string> sweep_files;
+  std::string store;
+  std::string out;
+  int runs = 0;
+  std::vector<std::string> sets;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace merge PART... --store FILE`: the shards' stores into one.
+struct MergeCommand final : Command {
+  std::vector<std::string> parts;
+  std::string store;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace reproduce ...`: the paper's study (studies/lochmatter2008) and its report.
+struct ReproduceCommand final : Command {
+  std::string preset = "default";
+  std::string presets;
+  int runs = 0;
+  CampaignFlags flags;
+  /// The command line, recorded in summary.json.
+  std::string command_line;
+
+  explicit ReproduceCommand(std::string line) : command_line(std::move(line)) {}
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+/// `plumetrace sensitivity ...`: the study's sets under every sensitivity combination.
+struct SensitivityCommand final : Command {
+  int runs = 10;
+  CampaignFlags flags;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
+}  // namespace plumetrace::cli

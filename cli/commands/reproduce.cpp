@@ -1,0 +1,80 @@
+#include "lochmatter2008/reproduce.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <thread>
+
+#include "campaign_run.hpp"
+#include "commands.hpp"
+#include "errors.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+#include "validators.hpp"
+
+namespace plumetrace::cli {
+
+CLI::App* ReproduceCommand::add(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "reproduce", "run the paper's nine experiment sets and write the report (report.html)");
+  std::string names = kDefaultReading;
+  try {
+    for (const auto& n : preset_names(read_study(default_study_file()).presets_dir)) {
+      names += ", " + n;
+    }
+  } catch (const ConfigError&) {
+    // why: the help names what it can; running says what is wrong with the study file
+  }
+  sub->add_option("--preset", preset,
+                  "the main reading of what the paper leaves unsaid: " + names +
+                      " (files studies/lochmatter2008/presets/NAME.toml; default: default, "
+                      "the built-in defaults)")
+      ->check(not_empty());
+  sub->add_option("--presets", presets,
+                  "the other readings whose nine sets are run too, for the claims columns, "
+                  "comma-separated, or none (default: every preset file)")
+      ->check(not_empty());
+  sub->add_option("--runs", runs, "runs per value (default 50, as the paper)")
+      ->check(whole_number(1, kMaxCampaignRuns));
+  flags.add_to(*sub);
+  return sub;
+}
+
+int ReproduceCommand::run() {
+  const Study study = read_study(flags.study_file());
+  // --presets: none, NAME,NAME,..., or every preset file when not given
+  std::optional<std::vector<std::string>> others;
+  if (!presets.empty()) {
+    others.emplace();
+    std::stringstream list(presets);
+    for (std::string name; presets != "none" && std::getline(list, name, ',');) {
+      if (!name.empty()) others->push_back(name);
+    }
+  }
+  const Reproduction plan = plan_reproduction(study, preset, others);
+  check_campaign_size(plan.sweeps, runs);
+  std::filesystem::create_directories(flags.out);
+  Store store(flags.out + "/results.sqlite", campaign_definition(plan.sweeps), version(),
+              flags.fresh);
+  CampaignResult result;
+  if (!run_with_progress("reproduce", plan.sweeps, store, runs, flags, result)) {
+    return kInterrupted;
+  }
+  ReproduceInfo info;
+  info.command = command_line;
+  info.runs_override = runs;
+  info.threads =
+      flags.threads > 0 ? flags.threads : static_cast<int>(std::thread::hardware_concurrency());
+  info.elapsed = result.elapsed;
+  info.computed = result.computed;
+  write_reproduction(flags.out, study, plan, store.rows(), info);
+  if (const int rc = draw_report(flags.out)) return rc;
+  std::printf(
+      "%lld runs (%lld computed now in %.1f s, %lld from the store)\nreport: %s/report.html "
+      "(and report.md)\n",
+      static_cast<long long>(result.total), static_cast<long long>(result.computed), result.elapsed,
+      static_cast<long long>(result.skipped), flags.out.c_str());
+  return 0;
+}
+
+}  // namespace plumetrace::cli

@@ -1,0 +1,91 @@
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "commands.hpp"
+#include "plumetrace/core/files.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/trace.hpp"
+#include "plumetrace/sim/world.hpp"
+#include "validators.hpp"
+
+namespace plumetrace::cli {
+
+namespace {
+
+std::string fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+void print_human(const RunResult& r, const RunInfo& info) {
+  std::cout << "plumetrace " << version() << ": " << info.algorithm << ", seed " << info.seed
+            << ", trial " << info.trial << "\n"
+            << "  outcome   " << outcome_name(r.outcome) << "\n"
+            << "  time      " << fixed(r.time, 2) << " s\n"
+            << "  d_t       " << fixed(r.d_t, 3) << " m (path length)\n"
+            << "  d_u       " << fixed(r.d_u, 3) << " m (upwind displacement)\n"
+            << "  overhead  " << fixed(r.overhead, 3) << " (d_t / d_u)\n"
+            << "  losses    " << r.losses << "\n"
+            << "  in odor   " << fixed(100.0 * r.odor_fraction, 1) << " % of steps\n";
+}
+
+}  // namespace
+
+CLI::App* RunCommand::add(CLI::App& app) {
+  auto* sub = app.add_subcommand("run", "simulate one run and print its metrics");
+  scenario.add_to(*sub, true);
+  sub->add_option("--seed", seed, "master seed (default 1)");
+  sub->add_option("--trial", trial, "trial index (default 0)");
+  sub->add_option("--trace", trace_path, "write the run's trace (.csv or .json)")
+      ->check(not_empty());
+  snapshot_option = sub->add_option("--snapshot-interval", snapshot_interval,
+                                    "seconds between filament snapshots in the trace (0: none)")
+                        ->check(finite_number(0.0));
+  sub->add_flag("--json", json, "print one JSON object");
+  sub->add_option("--view", view_path,
+                  "write the run's viewer (.html, animated) or figure (.svg); filaments every "
+                  "0.25 s unless --snapshot-interval says otherwise")
+      ->check(not_empty());
+  return sub;
+}
+
+int RunCommand::run() {
+  const Scenario s = scenario.load();
+  const std::uint64_t seed_value = parse_u64("--seed", seed);
+  const std::uint64_t trial_value = parse_u64("--trial", trial);
+  // fail on an unwritable trace before spending the run
+  if (!trace_path.empty()) check_trace_path(trace_path);
+  if (!view_path.empty()) check_view_path(view_path, "--view");
+  const RunInfo info{std::string(algorithm_name(s.controller.algorithm)), seed_value, trial_value};
+  Trace trace;
+  StepObserver observer;
+  if (!trace_path.empty() || !view_path.empty()) {
+    // why: the viewer animates the plume, so it wants snapshots more often than a trace
+    const double interval =
+        view_path.empty() || snapshot_option->count() > 0 ? snapshot_interval : 0.25;
+    observer = TraceRecorder(trace, interval, s.sim.dt);
+  }
+  const RunResult result = run_once(s, seed_value, trial_value, observer);
+  // print the result before writing the trace, so a failing write loses nothing computed
+  if (json) {
+    std::cout << result_to_json(result, info) << std::endl;
+  } else {
+    print_human(result, info);
+  }
+  if (!trace_path.empty()) {
+    write_trace(trace_path, trace, s, result, info);
+    if (!json) std::cout << "  trace     " << trace_path << "\n";
+  }
+  if (!view_path.empty()) {
+    const RecordedRun recorded{s, result, info, std::string(version()), std::move(trace)};
+    write_view(view_path, recorded, ViewerOptions{});
+    if (!json) std::cout << "  view      " << view_path << "\n";
+  }
+  return 0;
+}
+
+}  // namespace plumetrace::cli

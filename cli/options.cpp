@@ -1,0 +1,84 @@
+#include "options.hpp"
+
+#include <charconv>
+
+#include "lochmatter2008/study.hpp"
+#include "plumetrace/agent/controllers.hpp"
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "validators.hpp"
+
+namespace plumetrace::cli {
+
+namespace {
+
+// the registered algorithms: "casting, surge-spiral or surge-cast"
+std::string algorithm_names() {
+  const auto all = all_algorithms();
+  std::string out;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == all.size() ? " or " : ", ");
+    out += algorithm_name(all[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+void ScenarioOptions::add_to(CLI::App& cmd, bool with_algorithm) {
+  cmd.add_option("scenario", path, "scenario TOML file (default: the paper's setup)")
+      ->check(not_empty());
+  cmd.add_option("--set", sets, "override a config key: key.path=value (repeatable)")
+      ->allow_extra_args(false);
+  if (with_algorithm) {
+    cmd.add_option("--algorithm", algorithm, algorithm_names())->check(not_empty());
+  }
+}
+
+Scenario ScenarioOptions::load() const {
+  std::vector<Setting> overrides;
+  if (!algorithm.empty()) {
+    overrides.push_back(
+        {"controller.algorithm", algorithm, true, "--algorithm", Layer::kCommandLine});
+  }
+  for (const auto& s : sets) overrides.push_back(parse_override(s));
+  return load_scenario(path, overrides);
+}
+
+void CampaignFlags::add_to(CLI::App& sub) {
+  sub.add_option("--threads", threads, "worker threads (default: all cores)")
+      ->check(whole_number(1, kMaxThreads));
+  sub.add_option("--out", out, "output folder: stores, summary and report (default: out)")
+      ->check(not_empty());
+  sub.add_option("--experiments", experiments,
+                 "folder of the study: study.toml, its sweep files and presets (default: "
+                 "studies/lochmatter2008)")
+      ->check(not_empty());
+  sub.add_flag("--quiet", quiet, "no progress bar");
+  sub.add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
+  sub.add_flag("--no-share-plumes", no_share,
+               "simulate the plume anew for every run (same results, slower)");
+}
+
+std::string CampaignFlags::study_file() const {
+  return experiments.empty() ? default_study_file() : experiments + "/study.toml";
+}
+
+std::vector<Setting> parse_sets(const std::vector<std::string>& sets) {
+  std::vector<Setting> out;
+  for (const auto& s : sets) out.push_back(parse_override(s));
+  return out;
+}
+
+std::uint64_t parse_u64(const std::string& option, const std::string& text) {
+  std::uint64_t v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) {
+    throw ConfigError(option + ": must be a whole number from 0 to 18446744073709551615 (got '" +
+                      text + "')");
+  }
+  return v;
+}
+
+}  // namespace plumetrace::cli

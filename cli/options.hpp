@@ -1,0 +1,46 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plumetrace/sim/scenario.hpp"
+
+namespace plumetrace::cli {
+
+/// The options of every command that reads a scenario: the file, --set and --algorithm.
+struct ScenarioOptions {
+  std::string path;
+  std::vector<std::string> sets;
+  std::string algorithm;
+
+  /// Registers them on `cmd` (--algorithm only `with_algorithm`).
+  void add_to(CLI::App& cmd, bool with_algorithm);
+  /// The scenario they say: the file, then --algorithm, then each --set in order.
+  Scenario load() const;
+};
+
+/// The flags `reproduce` and `sensitivity` share.
+struct CampaignFlags {
+  int threads = 0;
+  std::string out = "out";
+  std::string experiments;
+  bool quiet = false;
+  bool fresh = false;
+  bool no_share = false;
+
+  /// Registers them on a subcommand.
+  void add_to(CLI::App& sub);
+  /// The study file: study.toml in the --experiments folder, or the repository's.
+  std::string study_file() const;
+};
+
+/// --set key=value texts as settings; throws ConfigError for one without '='.
+std::vector<Setting> parse_sets(const std::vector<std::string>& sets);
+
+/// A whole number in [0, 2^64) given to `option`; throws ConfigError naming it. why: CLI11
+/// would wrap "-1" silently.
+std::uint64_t parse_u64(const std::string& option, const std::string& text);
+
+}  // namespace plumetrace::cli

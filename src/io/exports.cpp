@@ -1,0 +1,92 @@
+#include "plumetrace/io/exports.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/io/results_io.hpp"
+#include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
+
+namespace plumetrace {
+
+namespace {
+
+// printf into a string, of any length
+std::string line(const char* format, ...) {
+  va_list args, again;
+  va_start(args, format);
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  std::string out(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
+  std::vsnprintf(out.data(), out.size(), format, again);
+  va_end(again);
+  va_end(args);
+  out.pop_back();
+  return out;
+}
+
+std::string interval_text(double value, double lo, double hi, int digits) {
+  if (!std::isfinite(value)) return "n/a";
+  char buf[96];
+  if (std::isfinite(lo) && std::isfinite(hi)) {
+    std::snprintf(buf, sizeof buf, "%.*f [%.*f, %.*f]", digits, value, digits, lo, digits, hi);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.*f", digits, value);
+  }
+  return buf;
+}
+
+std::string values_text(const ExpandedSweep& sweep, const SweepPoint& p) {
+  std::string out;
+  for (std::size_t a = 0; a < p.values.size(); ++a) {
+    const auto& v = p.values[a];
+    out += (a ? ", " : "") + sweep.def.axes[a].key + "=" +
+           (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_value(v));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string summary_table(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
+                          int runs_override) {
+  std::string out = line("%-8s %-44s %5s  %-24s %-24s\n", "sweep", "point", "runs",
+                         "success [95% CI]", "overhead [95% CI]");
+  for (const auto& sweep : sweeps) {
+    const int runs = runs_per_point(sweep, runs_override);
+    for (const auto& p : sweep.points) {
+      const PointStats st = summarize(point_runs(rows, sweep.def.name, p.index, runs));
+      out += line("%-8s %-44s %5lld  %-24s %-24s\n", sweep.def.name.c_str(),
+                  values_text(sweep, p).c_str(), static_cast<long long>(st.runs),
+                  interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2).c_str(),
+                  interval_text(st.overhead.mean, st.overhead.lo, st.overhead.hi, 3).c_str());
+    }
+  }
+  return out;
+}
+
+void write_exports(const std::string& out, const std::vector<ExpandedSweep>& sweeps,
+                   const std::vector<RunRow>& rows, int runs_override) {
+  write_runs_csv(out + "/runs.csv", sweeps, rows);
+  write_summary_csv(out + "/summary.csv", sweeps, rows, runs_override);
+  write_results_json(out + "/results.json", sweeps, rows, runs_override);
+}
+
+void export_store(const std::string& store, const std::vector<ExpandedSweep>& sweeps,
+                  const std::string& out, int runs_override) {
+  std::string definition;
+  const auto rows = read_store_rows(store, &definition);
+  if (definition != campaign_definition(sweeps)) {
+    throw StoreError("results store '" + store +
+                     "' was not made from these sweep files (or with other --set overrides)");
+  }
+  std::filesystem::create_directories(out);
+  write_exports(out, sweeps, rows, runs_override);
+}
+
+}  // namespace plumetrace

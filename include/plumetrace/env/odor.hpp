@@ -2,9 +2,14 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <span>
+#include <string_view>
 
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/registry.hpp"
+#include "plumetrace/env/plume_params.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {
@@ -62,5 +67,18 @@ class OdorField {
   /// The model's state for drawing and traces.
   virtual OdorSnapshot snapshot() const = 0;
 };
+
+/// The odor models: made from the scenario's PlumeParams, its source, the x beyond which odor
+/// leaves the arena (m) and the model's own seed (Stream::kPlume).
+using OdorRegistry = Registry<OdorField, const SourceParams&, double, std::uint64_t>;
+
+/// The registered odor models (src/env/models.cpp: one line each); the filament plume is
+/// "filament".
+OdorRegistry& odor_field_registry();
+
+/// Builds the odor model `name` (throws std::invalid_argument for a name not registered).
+std::unique_ptr<OdorField> make_odor_field(std::string_view name, const PlumeParams& params,
+                                           const SourceParams& source, double removal_x,
+                                           std::uint64_t seed);
 
 }  // namespace plumetrace

@@ -4,12 +4,17 @@
 
 #include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/registry.hpp"
 #include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
 
-/// Which wind field a scenario uses.
+/// Which wind field a scenario uses: its place in wind_field_registry(). The built-ins are named
+/// here, in the order they are registered.
 enum class WindModel { kConstant };
+
+/// The names of the registered wind fields, in registry order: the choices of wind.model.
+Choices wind_model_names();
 
 /// Parameters of the wind field.
 struct WindParams {
@@ -22,7 +27,7 @@ struct WindParams {
   /// The config keys (core/config.hpp).
   template <class V>
   void fields(V& v) {
-    v("model", model, "wind field", {"constant"});
+    v("model", model, "wind field", wind_model_names());
     v("vx", velocity.x, "constant wind velocity, x component (m/s)", kAnyNumber);
     v("vy", velocity.y, "constant wind velocity, y component (m/s)", kAnyNumber);
     v("vz", velocity.z, "constant wind velocity, z component (m/s)", kAnyNumber);
@@ -48,6 +53,8 @@ class ConstantWind final : public WindField {
  public:
   /// Builds the field from its velocity (m/s).
   explicit ConstantWind(const Vec3& velocity) : velocity_(velocity) {}
+  /// Builds the field from a scenario's wind; a constant wind never draws from its stream.
+  ConstantWind(const WindParams& params, Rng) : velocity_(params.velocity) {}
   /// Nothing changes.
   void step(double) override {}
   Vec3 velocity(const Vec3&) const override { return velocity_; }
@@ -56,6 +63,13 @@ class ConstantWind final : public WindField {
  private:
   Vec3 velocity_;
 };
+
+/// The wind fields, chosen by wind.model: made from the scenario's WindParams and the field's own
+/// random stream (Stream::kWind).
+using WindRegistry = Registry<WindField, Rng>;
+
+/// The registered wind fields (src/env/models.cpp: one line each).
+WindRegistry& wind_field_registry();
 
 /// Builds the wind field a scenario asks for; `rng` is its own random stream (Stream::kWind),
 /// which a constant wind never draws from.

@@ -97,18 +97,22 @@ std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
   Writer w;
   w.put(static_cast<std::uint32_t>(rows.size()));
   for (const RunRow& r : rows) {
-    const RunResult& m = r.result;
     w.put(r.sweep);
     w.put(static_cast<std::int32_t>(r.point));
     w.put(r.trial);
     w.put(r.config_hash);
-    w.put(static_cast<std::int32_t>(m.outcome));
-    for (const double v : {m.time, m.d_t, m.d_u, m.overhead, m.odor_fraction}) w.put(v);
-    w.put(static_cast<std::int32_t>(m.losses));
-    w.put(m.steps);
-    w.put(m.wind_samples);
-    w.put(m.seed);
-    w.put(m.trial);
+    w.put(r.result.seed);
+    w.put(r.result.trial);
+    RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if constexpr (kDerivedField<decltype(value)>) {
+        return;
+      } else if constexpr (std::is_same_v<T, Outcome>) {
+        w.put(static_cast<std::int32_t>(value));
+      } else {
+        w.put(value);
+      }
+    });
   }
   return w.take();
 }
@@ -117,20 +121,23 @@ std::vector<RunRow> decode_rows(const std::vector<char>& bytes) {
   Reader in(bytes);
   std::vector<RunRow> rows(in.get<std::uint32_t>());
   for (RunRow& r : rows) {
-    RunResult& m = r.result;
     r.sweep = in.text();
     r.point = in.get<std::int32_t>();
     r.trial = in.get<std::uint64_t>();
     r.config_hash = in.text();
-    m.outcome = static_cast<Outcome>(in.get<std::int32_t>());
-    for (double* v : {&m.time, &m.d_t, &m.d_u, &m.overhead, &m.odor_fraction}) {
-      *v = in.get<double>();
-    }
-    m.losses = in.get<std::int32_t>();
-    m.steps = in.get<std::int64_t>();
-    m.wind_samples = in.get<std::int64_t>();
-    m.seed = in.get<std::uint64_t>();
-    m.trial = in.get<std::uint64_t>();
+    r.result.seed = in.get<std::uint64_t>();
+    r.result.trial = in.get<std::uint64_t>();
+    RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if constexpr (kDerivedField<decltype(value)>) {
+        return;
+      } else if constexpr (std::is_same_v<T, Outcome>) {
+        value = static_cast<Outcome>(in.get<std::int32_t>());
+        if (outcome_name(value).empty()) throw IoError("MPI: a message holds an unknown outcome");
+      } else {
+        value = in.get<T>();
+      }
+    });
   }
   in.expect_end();
   return rows;

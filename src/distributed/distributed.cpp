@@ -21,13 +21,15 @@ class Writer {
   template <typename T>
   void put(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const auto* p = reinterpret_cast<const char*>(&value);
-    bytes_.insert(bytes_.end(), p, p + sizeof value);
+    const std::size_t at = bytes_.size();
+    bytes_.resize(at + sizeof value);
+    std::memcpy(bytes_.data() + at, &value, sizeof value);
   }
   void put(const std::string& text) {
     put(static_cast<std::uint32_t>(text.size()));
     bytes_.insert(bytes_.end(), text.begin(), text.end());
   }
+  void reserve(std::size_t size) { bytes_.reserve(size); }
   std::vector<char> take() { return std::move(bytes_); }
 
  private:
@@ -93,8 +95,35 @@ int threads_per_rank(const Ranks& ranks, int threads) {
   return std::max(1, cores / std::max(1, ranks.local_size()));
 }
 
+namespace {
+
+// a result field's value as it travels: an outcome as a 32-bit integer, any other as it is
+template <class T>
+auto on_wire(const T& value) {
+  if constexpr (std::is_same_v<T, Outcome>) {
+    return static_cast<std::int32_t>(value);
+  } else {
+    return value;
+  }
+}
+
+// the bytes of a row in a message, besides its two texts: its key, seed, trial and result fields
+constexpr std::size_t kRowBytes = [] {
+  std::size_t n = 2 * sizeof(std::uint32_t) + sizeof(std::int32_t) + 3 * sizeof(std::uint64_t);
+  const RunResult r{};
+  RunResult::fields(r, [&](const ResultField&, auto&& value) {
+    if constexpr (!kDerivedField<decltype(value)>) n += sizeof(on_wire(value));
+  });
+  return n;
+}();
+
+}  // namespace
+
 std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
   Writer w;
+  std::size_t size = sizeof(std::uint32_t);
+  for (const RunRow& r : rows) size += kRowBytes + r.sweep.size() + r.config_hash.size();
+  w.reserve(size);
   w.put(static_cast<std::uint32_t>(rows.size()));
   for (const RunRow& r : rows) {
     w.put(r.sweep);
@@ -104,14 +133,7 @@ std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
     w.put(r.result.seed);
     w.put(r.result.trial);
     RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
-      using T = std::remove_cvref_t<decltype(value)>;
-      if constexpr (kDerivedField<decltype(value)>) {
-        return;
-      } else if constexpr (std::is_same_v<T, Outcome>) {
-        w.put(static_cast<std::int32_t>(value));
-      } else {
-        w.put(value);
-      }
+      if constexpr (!kDerivedField<decltype(value)>) w.put(on_wire(value));
     });
   }
   return w.take();
@@ -132,8 +154,11 @@ std::vector<RunRow> decode_rows(const std::vector<char>& bytes) {
       if constexpr (kDerivedField<decltype(value)>) {
         return;
       } else if constexpr (std::is_same_v<T, Outcome>) {
-        value = static_cast<Outcome>(in.get<std::int32_t>());
-        if (outcome_name(value).empty()) throw IoError("MPI: a message holds an unknown outcome");
+        const auto code = in.get<std::int32_t>();
+        if (code < 0 || static_cast<std::size_t>(code) >= kOutcomeNames.size()) {
+          throw IoError("MPI: a message holds an unknown outcome");
+        }
+        value = static_cast<Outcome>(code);
       } else {
         value = in.get<T>();
       }

@@ -13,7 +13,12 @@ namespace plumetrace {
 /// How a run ended (docs/model.md section 8).
 enum class Outcome { kRunning, kSuccess, kWall, kTimeout, kGaveUp };
 
-/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up".
+/// The name of each outcome, indexed by its value: the one table outcome_name and parse_outcome
+/// read.
+inline constexpr std::array<std::string_view, 5> kOutcomeNames{"running", "success", "wall",
+                                                               "timeout", "gave_up"};
+
+/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up" ("" for no outcome).
 std::string_view outcome_name(Outcome outcome);
 
 /// The outcome that outcome_name gives `name`; throws ConfigError naming it and the names

@@ -648,10 +648,6 @@ class RowReader {
       : q_(q), path_(path), row_(std::move(row)) {}
 
   void name(std::string row) { row_ = std::move(row); }
-  std::string text(std::string_view column) const { return text(q_.column(column), column); }
-  std::int64_t integer(std::string_view column, std::int64_t lo, std::int64_t hi) const {
-    return integer(q_.column(column), column, lo, hi);
-  }
   [[noreturn]] void bad(int col, std::string_view column, const std::string& why) const {
     damaged(path_, row_ + ": column " + std::string(column) + " holds " + type_name(q_.type(col)) +
                        (q_.type(col) == SQLITE_NULL ? "" : " '" + shown(q_.text(col)) + "'") +
@@ -714,8 +710,9 @@ RunColumnsAt run_columns_of(const Statement& q) {
   const std::vector<std::string> names = q.column_names();
   const auto find = [&](std::string_view name) {
     const auto it = std::find(names.begin(), names.end(), name);
-    if (it == names.end())
+    if (it == names.end()) {
       throw std::logic_error("SQL statement has no column " + std::string(name));
+    }
     return static_cast<int>(it - names.begin());
   };
   RunColumnsAt at = locate_run_columns(find);
@@ -827,10 +824,11 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
   std::map<std::string, std::string> meta;
   {
     Statement q(db, "SELECT key, value, rowid FROM meta", path);
+    const int key_at = q.column("key"), value_at = q.column("value"), rowid = q.column("rowid");
     while (q.step()) {
-      const RowReader in(q, path, "row " + std::to_string(q.integer("rowid")) + " of table meta");
-      const std::string key = in.text("key");
-      meta[key] = in.text("value");
+      const RowReader in(q, path, "row " + std::to_string(q.integer(rowid)) + " of table meta");
+      const std::string key = in.text(key_at, "key");
+      meta[key] = in.text(value_at, "value");
     }
   }
   const auto need = [&](const std::string& key) -> const std::string& {
@@ -899,14 +897,17 @@ StoreContents load(sqlite3* db, const std::string& path) {
                 "SELECT sweep, point, axis_values, config_hash, config, rowid FROM points "
                 "ORDER BY sweep, point",
                 path);
+    const int sweep = q.column("sweep"), point = q.column("point"),
+              axis_values = q.column("axis_values"), config_hash = q.column("config_hash"),
+              config = q.column("config"), rowid = q.column("rowid");
     while (q.step()) {
-      const RowReader in(q, path, "row " + std::to_string(q.integer("rowid")) + " of table points");
+      const RowReader in(q, path, "row " + std::to_string(q.integer(rowid)) + " of table points");
       StoredPoint p;
-      p.sweep = in.text("sweep");
-      p.point = static_cast<int>(in.integer("point", 0, INT_MAX));
-      p.axis_values = in.text("axis_values");
-      p.config_hash = in.text("config_hash");
-      p.config = in.text("config");
+      p.sweep = in.text(sweep, "sweep");
+      p.point = static_cast<int>(in.integer(point, "point", 0, INT_MAX));
+      p.axis_values = in.text(axis_values, "axis_values");
+      p.config_hash = in.text(config_hash, "config_hash");
+      p.config = in.text(config, "config");
       if (!hash_of_point.emplace(std::pair{p.sweep, p.point}, p.config_hash).second) {
         damaged(path, "it holds sweep " + shown(p.sweep) + ", point " + std::to_string(p.point) +
                           " twice in table points");
@@ -1306,10 +1307,11 @@ StoreInfo Store::info() const {
 std::set<RunKey> Store::keys() const {
   const ReadTransaction read(db_, path_);
   Statement q(db_, "SELECT sweep, point, trial FROM runs", path_);
+  const int sweep = q.column("sweep"), point = q.column("point"), trial = q.column("trial");
   std::set<RunKey> keys;
   while (q.step()) {
-    keys.emplace(q.text("sweep"), static_cast<int>(q.integer("point")),
-                 static_cast<std::uint64_t>(q.integer("trial")));
+    keys.emplace(q.text(sweep), static_cast<int>(q.integer(point)),
+                 static_cast<std::uint64_t>(q.integer(trial)));
   }
   return keys;
 }

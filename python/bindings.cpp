@@ -15,6 +15,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "lochmatter2008/calibration.hpp"
@@ -30,6 +32,7 @@
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/result.hpp"
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/trace.hpp"
 #include "plumetrace/sim/world.hpp"
@@ -435,52 +438,70 @@ py::dict sweep(const std::string& path, const py::list& overrides, int runs, int
   return out;
 }
 
+// the values of a result field over a sweep's rows, by the field's type: outcome names, flags
+// (as bytes, made bool at the end), reals, whole numbers
+template <class T>
+using ColumnOf = std::conditional_t<
+    std::is_same_v<T, pt::Outcome>, py::list,
+    std::conditional_t<std::is_same_v<T, bool>, std::vector<std::uint8_t>,
+                       std::conditional_t<std::is_floating_point_v<T>, std::vector<double>,
+                                          std::vector<std::int64_t>>>>;
+using FieldColumn = std::variant<py::list, std::vector<std::uint8_t>, std::vector<double>,
+                                 std::vector<std::int64_t>>;
+
 py::dict sweep_columns(const pt::ExpandedSweep& s, std::vector<pt::RunRow> rows) {
   std::sort(rows.begin(), rows.end(), [](const pt::RunRow& a, const pt::RunRow& b) {
     return std::tie(a.point, a.trial) < std::tie(b.point, b.trial);
   });
-  py::dict columns;
-  std::vector<std::int64_t> point, trial, losses, steps, wind_samples;
+  std::vector<std::int64_t> point, trial;
   std::vector<std::uint64_t> seed;
-  std::vector<std::uint8_t> success;
-  std::vector<double> time, d_t, d_u, overhead, odor_fraction;
-  py::list outcome;
   std::vector<py::list> axis_values(s.def.axes.size());
+  std::vector<FieldColumn> fields;
+  const pt::RunResult none{};
+  pt::RunResult::fields(none, [&](const pt::ResultField&, const auto& value) {
+    fields.emplace_back(std::in_place_type<ColumnOf<std::remove_cvref_t<decltype(value)>>>);
+  });
   for (const pt::RunRow& r : rows) {
     point.push_back(r.point);
     trial.push_back(static_cast<std::int64_t>(r.trial));
     seed.push_back(r.result.seed);
-    outcome.append(std::string(pt::outcome_name(r.result.outcome)));
-    success.push_back(r.result.outcome == pt::Outcome::kSuccess ? 1 : 0);
-    time.push_back(r.result.time);
-    d_t.push_back(r.result.d_t);
-    d_u.push_back(r.result.d_u);
-    overhead.push_back(r.result.overhead);
-    losses.push_back(r.result.losses);
-    odor_fraction.push_back(r.result.odor_fraction);
-    steps.push_back(r.result.steps);
-    wind_samples.push_back(r.result.wind_samples);
+    std::size_t k = 0;
+    pt::RunResult::fields(r.result, [&](const pt::ResultField&, const auto& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      auto& column = std::get<ColumnOf<T>>(fields[k++]);
+      if constexpr (std::is_same_v<T, pt::Outcome>) {
+        column.append(std::string(pt::outcome_name(value)));
+      } else {
+        column.push_back(value);
+      }
+    });
     const pt::SweepPoint& p = s.points[static_cast<std::size_t>(r.point)];
     for (std::size_t a = 0; a < axis_values.size(); ++a) {
       std::visit([&](const auto& v) { axis_values[a].append(v); }, p.values[a]);
     }
   }
+  py::dict columns;
   columns["point"] = to_array(point);
   for (std::size_t a = 0; a < axis_values.size(); ++a) {
     columns[py::str(s.def.axes[a].key)] = axis_values[a];
   }
   columns["trial"] = to_array(trial);
   columns["seed"] = to_array(seed);
-  columns["outcome"] = outcome;
-  columns["success"] = to_array(success).attr("astype")("bool");
-  columns["time_s"] = to_array(time);
-  columns["d_t"] = to_array(d_t);
-  columns["d_u"] = to_array(d_u);
-  columns["overhead"] = to_array(overhead);
-  columns["losses"] = to_array(losses);
-  columns["odor_fraction"] = to_array(odor_fraction);
-  columns["steps"] = to_array(steps);
-  columns["wind_samples"] = to_array(wind_samples);
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const py::str name(std::string(pt::kResultFields[k].name));
+    columns[name] = std::visit(
+        [](auto& values) -> py::object {
+          using C = std::remove_cvref_t<decltype(values)>;
+          if constexpr (std::is_same_v<C, py::list>) {
+            return values;
+          } else if constexpr (std::is_same_v<C, std::vector<std::uint8_t>>) {
+            return to_array(values).attr("astype")("bool");
+          } else {
+            return to_array(values);
+          }
+        },
+        fields[k]);
+  }
   return columns;
 }
 
@@ -597,6 +618,20 @@ PYBIND11_MODULE(_core, m) {
         return pt::scenario_to_toml(scenario_of(path, overrides));
       },
       "the resolved scenario as TOML");
+  m.def(
+      "result_fields",
+      [] {
+        py::list fields;
+        for (const pt::ResultField& f : pt::kResultFields) {
+          py::dict d;
+          d["name"] = std::string(f.name);
+          d["unit"] = std::string(f.unit);
+          d["nullable"] = f.nullable;
+          fields.append(d);
+        }
+        return fields;
+      },
+      "the per-run result fields in column order: name, SI unit (\"\" for none), nullable");
   m.def("algorithms", [] {
     std::vector<std::string> names;
     for (const pt::Algorithm a : pt::all_algorithms()) names.emplace_back(pt::algorithm_name(a));

@@ -16,6 +16,13 @@ def algorithms():
     return list(_core.algorithms())
 
 
+def result_fields():
+    """The per-run metrics in column order, each a dict with ``name``, ``unit`` ("" for none)
+    and ``nullable`` (NaN allowed). A run's dict has these keys and a sweep's rows these columns,
+    after ``point``, the axis keys, ``trial`` and ``seed``."""
+    return list(_core.result_fields())
+
+
 class Scenario:
     """A scenario: an optional TOML file plus overrides, resolved and validated by the core.
 

@@ -108,6 +108,19 @@ def test_sweep_equals_the_command_line_sweep(tmp_path):
         assert mine["steps"] == int(row["steps"]) and mine["losses"] == int(row["losses"])
 
 
+def test_runs_sweep_rows_and_runs_csv_have_the_result_fields_in_order(tmp_path):
+    names = [f["name"] for f in pt.result_fields()]
+    assert names[:2] == ["outcome", "success"] and len(set(names)) == len(names)
+    axes = ["controller.algorithm", "wind_sensor.sigma_a"]
+    rows = pt.sweep(GOLDEN, runs=1)
+    assert rows.keys() == ["point", *axes, "trial", "seed", *names]
+    assert list(rows.to_numpy()) == rows.keys()
+    assert set(pt.run(trace=False)) == {"algorithm", "seed", "trial", "version", *names}
+    cli("sweep", GOLDEN, "--runs", 1, "--out", tmp_path, "--quiet")
+    header = (tmp_path / "runs.csv").read_text().splitlines()[0].split(",")
+    assert header == ["sweep", "point", *axes, "trial", "seed", "config_hash", *names]
+
+
 def test_sweep_rows_do_not_depend_on_threads_or_plume_sharing():
     one = pt.sweep(GOLDEN, runs=2, threads=1, share_plumes=False).to_numpy()
     two = pt.sweep(GOLDEN, runs=2, threads=2).to_numpy()

@@ -21,13 +21,15 @@ class Writer {
   template <typename T>
   void put(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const auto* p = reinterpret_cast<const char*>(&value);
-    bytes_.insert(bytes_.end(), p, p + sizeof value);
+    const std::size_t at = bytes_.size();
+    bytes_.resize(at + sizeof value);
+    std::memcpy(bytes_.data() + at, &value, sizeof value);
   }
   void put(const std::string& text) {
     put(static_cast<std::uint32_t>(text.size()));
     bytes_.insert(bytes_.end(), text.begin(), text.end());
   }
+  void reserve(std::size_t size) { bytes_.reserve(size); }
   std::vector<char> take() { return std::move(bytes_); }
 
  private:
@@ -93,22 +95,46 @@ int threads_per_rank(const Ranks& ranks, int threads) {
   return std::max(1, cores / std::max(1, ranks.local_size()));
 }
 
+namespace {
+
+// a result field's value as it travels: an outcome as a 32-bit integer, any other as it is
+template <class T>
+auto on_wire(const T& value) {
+  if constexpr (std::is_same_v<T, Outcome>) {
+    return static_cast<std::int32_t>(value);
+  } else {
+    return value;
+  }
+}
+
+// the bytes of a row in a message, besides its two texts: its key, seed, trial and result fields
+constexpr std::size_t kRowBytes = [] {
+  std::size_t n = 2 * sizeof(std::uint32_t) + sizeof(std::int32_t) + 3 * sizeof(std::uint64_t);
+  const RunResult r{};
+  RunResult::fields(r, [&](const ResultField&, auto&& value) {
+    if constexpr (!kDerivedField<decltype(value)>) n += sizeof(on_wire(value));
+  });
+  return n;
+}();
+
+}  // namespace
+
 std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
   Writer w;
+  std::size_t size = sizeof(std::uint32_t);
+  for (const RunRow& r : rows) size += kRowBytes + r.sweep.size() + r.config_hash.size();
+  w.reserve(size);
   w.put(static_cast<std::uint32_t>(rows.size()));
   for (const RunRow& r : rows) {
-    const RunResult& m = r.result;
     w.put(r.sweep);
     w.put(static_cast<std::int32_t>(r.point));
     w.put(r.trial);
     w.put(r.config_hash);
-    w.put(static_cast<std::int32_t>(m.outcome));
-    for (const double v : {m.time, m.d_t, m.d_u, m.overhead, m.odor_fraction}) w.put(v);
-    w.put(static_cast<std::int32_t>(m.losses));
-    w.put(m.steps);
-    w.put(m.wind_samples);
-    w.put(m.seed);
-    w.put(m.trial);
+    w.put(r.result.seed);
+    w.put(r.result.trial);
+    RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
+      if constexpr (!kDerivedField<decltype(value)>) w.put(on_wire(value));
+    });
   }
   return w.take();
 }
@@ -117,20 +143,26 @@ std::vector<RunRow> decode_rows(const std::vector<char>& bytes) {
   Reader in(bytes);
   std::vector<RunRow> rows(in.get<std::uint32_t>());
   for (RunRow& r : rows) {
-    RunResult& m = r.result;
     r.sweep = in.text();
     r.point = in.get<std::int32_t>();
     r.trial = in.get<std::uint64_t>();
     r.config_hash = in.text();
-    m.outcome = static_cast<Outcome>(in.get<std::int32_t>());
-    for (double* v : {&m.time, &m.d_t, &m.d_u, &m.overhead, &m.odor_fraction}) {
-      *v = in.get<double>();
-    }
-    m.losses = in.get<std::int32_t>();
-    m.steps = in.get<std::int64_t>();
-    m.wind_samples = in.get<std::int64_t>();
-    m.seed = in.get<std::uint64_t>();
-    m.trial = in.get<std::uint64_t>();
+    r.result.seed = in.get<std::uint64_t>();
+    r.result.trial = in.get<std::uint64_t>();
+    RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if constexpr (kDerivedField<decltype(value)>) {
+        return;
+      } else if constexpr (std::is_same_v<T, Outcome>) {
+        const auto code = in.get<std::int32_t>();
+        if (code < 0 || static_cast<std::size_t>(code) >= kOutcomeNames.size()) {
+          throw IoError("MPI: a message holds an unknown outcome");
+        }
+        value = static_cast<Outcome>(code);
+      } else {
+        value = in.get<T>();
+      }
+    });
   }
   in.expect_end();
   return rows;

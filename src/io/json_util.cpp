@@ -1,6 +1,7 @@
 #include "plumetrace/io/json_util.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "plumetrace/core/files.hpp"
 
@@ -13,20 +14,22 @@ json value_to_json(const ConfigValue& v) {
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json result_json(const RunResult& r, const RunInfo& info) {
-  return json{{"algorithm", info.algorithm},
-              {"outcome", std::string(outcome_name(r.outcome))},
-              {"success", r.outcome == Outcome::kSuccess},
-              {"time_s", r.time},
-              {"d_t", r.d_t},
-              {"d_u", r.d_u},
-              {"overhead", number_or_null(r.overhead)},
-              {"losses", r.losses},
-              {"odor_fraction", r.odor_fraction},
-              {"steps", r.steps},
-              {"wind_samples", r.wind_samples},
-              {"seed", info.seed},
-              {"trial", info.trial},
-              {"version", std::string(version())}};
+  json out{{"algorithm", info.algorithm}};
+  RunResult::fields(r, [&](const ResultField& f, const auto& value) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    json& cell = out[std::string(f.name)];
+    if constexpr (std::is_same_v<T, Outcome>) {
+      cell = std::string(outcome_name(value));
+    } else if constexpr (std::is_floating_point_v<T>) {
+      cell = f.nullable ? number_or_null(value) : json(value);
+    } else {
+      cell = value;
+    }
+  });
+  out["seed"] = info.seed;
+  out["trial"] = info.trial;
+  out["version"] = std::string(version());
+  return out;
 }
 
 json stats_json(const PointStats& p) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <type_traits>
 
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
@@ -91,19 +92,28 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
   const auto keys = axis_keys(sweeps);
   OutputFile file(path);
   auto& out = file.stream();
-  out << axis_header(keys)
-      << ",trial,seed,config_hash,outcome,success,time_s,d_t,d_u,overhead,losses,odor_fraction,"
-         "steps,wind_samples\n";
+  out << axis_header(keys) << ",trial,seed,config_hash";
+  for (const ResultField& f : kResultFields) out << ',' << f.name;
+  out << '\n';
   for (const auto& r : rows) {
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
     if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
-    const RunResult& m = r.result;
     out << csv_text(r.sweep) << ',' << r.point << axis_cells(*sweep, r.point, keys) << ','
-        << r.trial << ',' << m.seed << ',' << csv_text(r.config_hash) << ','
-        << csv_text(outcome_name(m.outcome)) << ',' << (m.outcome == Outcome::kSuccess ? 1 : 0)
-        << ',' << csv_number(m.time) << ',' << csv_number(m.d_t) << ',' << csv_number(m.d_u) << ','
-        << csv_number(m.overhead) << ',' << m.losses << ',' << csv_number(m.odor_fraction) << ','
-        << m.steps << ',' << m.wind_samples << '\n';
+        << r.trial << ',' << r.result.seed << ',' << csv_text(r.config_hash);
+    RunResult::fields(r.result, [&](const ResultField&, const auto& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      out << ',';
+      if constexpr (std::is_same_v<T, Outcome>) {
+        out << csv_text(outcome_name(value));
+      } else if constexpr (std::is_same_v<T, bool>) {
+        out << (value ? 1 : 0);
+      } else if constexpr (std::is_floating_point_v<T>) {
+        out << csv_number(value);
+      } else {
+        out << value;
+      }
+    });
+    out << '\n';
   }
   file.commit();
 }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string_view>
+#include <type_traits>
 
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/io/json_util.hpp"
@@ -140,14 +141,6 @@ std::vector<Setting> config_settings(const json& config, const std::string& orig
   return settings;
 }
 
-Outcome outcome_from_name(const std::string& name) {
-  for (Outcome o : {Outcome::kRunning, Outcome::kSuccess, Outcome::kWall, Outcome::kTimeout,
-                    Outcome::kGaveUp}) {
-    if (outcome_name(o) == name) return o;
-  }
-  throw ConfigError("unknown outcome '" + name + "'");
-}
-
 // a whole-number field of a trace, checked to lie in [lo, hi]; why: get<int>() wraps a number
 // that does not fit, and truncates 1.5 (issue 13, F18)
 template <class T>
@@ -193,22 +186,25 @@ RecordedRun read_trace(const std::string& path) {
 
     const json& r = doc.at("result");
     constexpr auto kU64 = std::numeric_limits<std::uint64_t>::max();
-    constexpr auto kI64 = std::numeric_limits<std::int64_t>::max();
     constexpr auto kInt = std::numeric_limits<int>::max();
     run.info = {r.at("algorithm").get<std::string>(),
                 trace_integer<std::uint64_t>(r.at("seed"), path, "result.seed", 0, kU64),
                 trace_integer<std::uint64_t>(r.at("trial"), path, "result.trial", 0, kU64)};
     run.version = r.at("version").get<std::string>();
-    run.result.outcome = outcome_from_name(r.at("outcome").get<std::string>());
-    run.result.time = r.at("time_s").get<double>();
-    run.result.d_t = r.at("d_t").get<double>();
-    run.result.d_u = r.at("d_u").get<double>();
-    run.result.overhead = number_or_nan(r.at("overhead"));
-    run.result.losses = trace_integer<int>(r.at("losses"), path, "result.losses", 0, kInt);
-    run.result.odor_fraction = r.at("odor_fraction").get<double>();
-    run.result.steps = trace_integer<std::int64_t>(r.at("steps"), path, "result.steps", 0, kI64);
-    run.result.wind_samples =
-        trace_integer<std::int64_t>(r.at("wind_samples"), path, "result.wind_samples", 0, kI64);
+    RunResult::fields(run.result, [&](const ResultField& f, auto&& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if constexpr (!kDerivedField<decltype(value)>) {
+        const json& v = r.at(std::string(f.name));
+        if constexpr (std::is_same_v<T, Outcome>) {
+          value = parse_outcome(v.get<std::string>());
+        } else if constexpr (std::is_floating_point_v<T>) {
+          value = f.nullable ? number_or_nan(v) : v.get<double>();
+        } else {
+          value = trace_integer<T>(v, path, "result." + std::string(f.name), 0,
+                                   std::numeric_limits<T>::max());
+        }
+      }
+    });
     run.result.seed = run.info.seed;
     run.result.trial = run.info.trial;
 

@@ -1,16 +1,42 @@
 #pragma once
 
+#include <array>
+#include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace plumetrace {
 
 /// How a run ended (docs/model.md section 8).
 enum class Outcome { kRunning, kSuccess, kWall, kTimeout, kGaveUp };
 
-/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up".
+/// The name of each outcome, indexed by its value: the one table outcome_name and parse_outcome
+/// read.
+inline constexpr std::array<std::string_view, 5> kOutcomeNames{"running", "success", "wall",
+                                                               "timeout", "gave_up"};
+
+/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up" ("" for no outcome).
 std::string_view outcome_name(Outcome outcome);
+
+/// The outcome that outcome_name gives `name`; throws ConfigError naming it and the names
+/// allowed when it is none.
+Outcome parse_outcome(std::string_view name);
+
+/// What the formats need to know of a result field besides its value's type.
+struct ResultField {
+  std::string_view name = {};  ///< column (CSV, SQLite, Python) and key (JSON) name
+  std::string_view unit = {};  ///< SI unit, "" for a name, a count or a fraction
+  bool nullable = false;       ///< may be NaN: written as null (JSON), NULL (SQLite), "" (CSV)
+};
+
+/// Whether a value given by RunResult::fields, as `decltype(value)` of an `auto&&` parameter, is
+/// derived from the fields before it (given by value, as success) rather than a member: written
+/// by every format, checked or skipped when read, never sent or hashed.
+template <class T>
+inline constexpr bool kDerivedField = !std::is_lvalue_reference_v<T>;
 
 /// The metrics of one run (docs/model.md section 9).
 struct RunResult {
@@ -36,7 +62,42 @@ struct RunResult {
   std::uint64_t seed = 0;
   /// Trial index.
   std::uint64_t trial = 0;
+
+  /// The one list of a run's result fields, in column order: calls `v(ResultField, value)` for
+  /// each. runs.csv, the JSON result (run --json, results.json, traces), the store's runs table,
+  /// the MPI row message and the Python sweep columns all follow it. A value is a member
+  /// (Outcome, double, int or std::int64_t; integers are whole numbers from 0), or derived
+  /// (kDerivedField). Seed and trial identify the run: each format writes them with its key.
+  template <class Self, class Visitor>
+  requires std::same_as<std::remove_const_t<Self>, RunResult>
+  static constexpr void fields(Self& r, Visitor&& v) {
+    v({.name = "outcome"}, r.outcome);
+    v({.name = "success"}, r.outcome == Outcome::kSuccess);
+    v({.name = "time_s", .unit = "s"}, r.time);
+    v({.name = "d_t", .unit = "m"}, r.d_t);
+    v({.name = "d_u", .unit = "m"}, r.d_u);
+    v({.name = "overhead", .nullable = true}, r.overhead);
+    v({.name = "losses"}, r.losses);
+    v({.name = "odor_fraction"}, r.odor_fraction);
+    v({.name = "steps"}, r.steps);
+    v({.name = "wind_samples"}, r.wind_samples);
+  }
 };
+
+/// Every result field's description, in RunResult::fields order (for headers and schemas).
+inline constexpr auto kResultFields = [] {
+  constexpr std::size_t count = [] {
+    std::size_t n = 0;
+    const RunResult r{};
+    RunResult::fields(r, [&](const ResultField&, const auto&) { ++n; });
+    return n;
+  }();
+  std::array<ResultField, count> fields{};
+  std::size_t k = 0;
+  const RunResult r{};
+  RunResult::fields(r, [&](const ResultField& f, const auto&) { fields[k++] = f; });
+  return fields;
+}();
 
 /// Identifies a run: what the trace and the JSON output carry besides the result.
 struct RunInfo {

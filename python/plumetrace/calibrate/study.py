@@ -9,7 +9,22 @@ import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-SET_NAMES = ["A", "B", "C", "D", "E", "F", "G", "H", "I"]
+
+
+def study_set_names(folder: Path) -> list:
+    """The experiment sets of the study in `folder`, in order, from its study.toml (the one list
+    of the paper's sets A-I: studies/lochmatter2008/study.toml); none without one."""
+    path = folder / "study.toml"
+    if not path.is_file():
+        return []
+    try:
+        doc = tomllib.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
+        raise StudyError(f"{path}: cannot read the study file: {e}") from e
+    sets = doc.get("sets", [])
+    if not isinstance(sets, list) or any(not isinstance(s, str) for s in sets):
+        raise StudyError(f"{path}: 'sets' must be a list of sweep files")
+    return [Path(s).stem for s in sets]
 CALIBRATION_CLAIMS = [1, 2, 10]
 HELD_OUT_CLAIMS = [3, 4, 5, 6, 7, 8, 9, 11]
 TARGETS = ["paper", "synthetic"]
@@ -237,10 +252,16 @@ def load_study(path, check_keys=None):
             raise StudyError(f"{where}: two searched unknowns set the same key '{k}'")
 
     sets_dir = (base / doc["sets_dir"]).resolve() if "sets_dir" in doc else unknowns_path.parent
-    sets = doc.get("sets", SET_NAMES)
-    if not isinstance(sets, list) or not sets or any(s not in SET_NAMES for s in sets):
+    # the study whose sweep files these are: sets/ beside its study.toml, or the folder itself
+    set_names = []
+    for folder in (sets_dir.parent, sets_dir):
+        if (folder / "study.toml").resolve() != path.resolve():
+            set_names = set_names or study_set_names(folder)
+    sets = doc.get("sets", set_names)
+    if not isinstance(sets, list) or not sets or any(
+            not isinstance(s, str) or (set_names and s not in set_names) for s in sets):
         raise StudyError(f"{where}: 'sets' must be a list of set names among "
-                         f"{', '.join(SET_NAMES)} (got {sets!r})")
+                         f"{', '.join(set_names) or 'the sweep files of sets_dir'} (got {sets!r})")
 
     for name in sets:
         if not (sets_dir / f"{name}.toml").is_file():

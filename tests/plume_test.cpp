@@ -13,6 +13,7 @@
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "support/stepped_wind.hpp"
 
 namespace plumetrace {
 namespace {
@@ -555,14 +556,7 @@ TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
   }
 }
 
-// A uniform wind that blows 0.1 m/s harder after every step; counts its steps.
-class SteppedWind final : public WindField {
- public:
-  void step(double) override { ++steps; }
-  Vec3 velocity(const Vec3&) const override { return {0.5 + 0.1 * steps, 0.0, 0.0}; }
-  bool uniform_in_space() const override { return true; }
-  int steps = 0;
-};
+using testing::SteppedWind;
 
 // An odor model of one uniform concentration that records the wind and dt of each step.
 class RecordingOdor final : public OdorField {

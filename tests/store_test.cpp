@@ -334,22 +334,12 @@ TEST(StoreConcurrency, ThreeSweepsOnOneStoreAllFinishWithTheExportsOfOne) {
 // SIGXFSZ is left at its default, so a command that does not ignore it dies of it
 testing::CommandOutput plumetrace_limited(const std::vector<std::string>& args, rlim_t bytes) {
   const std::string err = testing::temp_path("stderr", ".txt");
-  const pid_t pid = fork();
-  if (pid == 0) {
+  testing::CommandOutput o;
+  o.code = testing::wait_for(testing::spawn_program(kCli, args, "/dev/null", err, [bytes] {
     const rlimit limit{bytes, bytes};
     setrlimit(RLIMIT_FSIZE, &limit);
     signal(SIGXFSZ, SIG_DFL);
-    std::vector<char*> argv{const_cast<char*>(kCli.c_str())};
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    if (!freopen("/dev/null", "w", stdout) || !freopen(err.c_str(), "w", stderr)) _exit(126);
-    execv(kCli.c_str(), argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  testing::CommandOutput o;
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }));
   o.err = read_file(err);
   return o;
 }

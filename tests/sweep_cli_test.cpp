@@ -41,50 +41,14 @@ std::string write_sweep() { return testing::write_temp("sweep", ".toml", kSweep)
 using testing::read_file;
 
 // starts the command in the background; returns its pid
-pid_t spawn(const std::vector<std::string>& args) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(kCli.c_str()));
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    freopen("/dev/null", "w", stdout);
-    freopen("/dev/null", "w", stderr);
-    execv(kCli.c_str(), argv.data());
-    _exit(127);
-  }
-  return pid;
-}
+pid_t spawn(const std::vector<std::string>& args) { return testing::spawn_program(kCli, args); }
 
 // runs the command to its end without a shell, capturing stdout and stderr
 testing::CommandOutput run_args(const std::vector<std::string>& args) {
-  const std::string out = testing::temp_path("stdout", ".txt");
-  const std::string err = testing::temp_path("stderr", ".txt");
-  const pid_t pid = fork();
-  if (pid == 0) {
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(kCli.c_str()));
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    freopen(out.c_str(), "w", stdout);
-    freopen(err.c_str(), "w", stderr);
-    execv(kCli.c_str(), argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  testing::CommandOutput o;
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  o.out = read_file(out);
-  o.err = read_file(err);
-  return o;
+  return testing::run_program(kCli, args);
 }
 
-int wait_exit(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+int wait_exit(pid_t pid) { return testing::wait_for(pid); }
 
 std::size_t stored_runs(const std::string& store) {
   try {

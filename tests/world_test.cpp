@@ -14,6 +14,7 @@
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/trace.hpp"
+#include "support/stepped_wind.hpp"
 
 namespace plumetrace {
 namespace {
@@ -384,15 +385,7 @@ bool same_result(const RunResult& a, const RunResult& b) {
          a.trial == b.trial;
 }
 
-// A uniform wind that blows 0.1 m/s harder after every step, so that a reading tells which step
-// the field is at; counts its steps.
-class SteppedWind final : public WindField {
- public:
-  void step(double) override { ++steps; }
-  Vec3 velocity(const Vec3&) const override { return {0.5 + 0.1 * steps, 0.0, 0.0}; }
-  bool uniform_in_space() const override { return true; }
-  int steps = 0;
-};
+using testing::SteppedWind;
 
 // Stands still and takes one wind sample per step (body frame x).
 class WindLogger final : public Controller {

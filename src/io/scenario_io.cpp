@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "plumetrace/io/json_util.hpp"
-#include "toml_input.hpp"
+#include "plumetrace/io/toml_input.hpp"
 
 namespace plumetrace {
 

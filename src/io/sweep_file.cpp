@@ -6,7 +6,7 @@
 
 #include "plumetrace/io/json_util.hpp"
 #include "plumetrace/io/scenario_io.hpp"
-#include "toml_input.hpp"
+#include "plumetrace/io/toml_input.hpp"
 
 namespace plumetrace {
 
@@ -15,17 +15,7 @@ using detail::parse_toml_file;
 using detail::value_to_json;
 using nlohmann::json;
 
-namespace {
-
-std::optional<ConfigValue> toml_scalar(const toml::node& node) {
-  if (const auto* i = node.as_integer()) return static_cast<std::int64_t>(i->get());
-  if (const auto* d = node.as_floating_point()) return d->get();
-  if (const auto* s = node.as_string()) return s->get();
-  if (const auto* b = node.as_boolean()) return b->get();
-  return std::nullopt;
-}
-
-}  // namespace
+using detail::toml_scalar;
 
 SweepDef read_sweep_file(const std::string& path) {
   const toml::table table = parse_toml_file(path, "sweep file");

@@ -1,4 +1,4 @@
-#include "toml_input.hpp"
+#include "plumetrace/io/toml_input.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -123,6 +123,14 @@ toml::table parse_toml_file(const std::string& path, const std::string& what) {
         << ": invalid TOML: " << e.description();
     throw ConfigError(msg.str());
   }
+}
+
+std::optional<ConfigValue> toml_scalar(const toml::node& node) {
+  if (const auto* i = node.as_integer()) return static_cast<std::int64_t>(i->get());
+  if (const auto* d = node.as_floating_point()) return d->get();
+  if (const auto* s = node.as_string()) return s->get();
+  if (const auto* b = node.as_boolean()) return b->get();
+  return std::nullopt;
 }
 
 }  // namespace plumetrace::detail

@@ -10,19 +10,12 @@
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/io/sweep_file.hpp"
+#include "plumetrace/io/toml_input.hpp"
 #include "plumetrace/paths.hpp"
 
 namespace plumetrace {
 
 namespace {
-
-std::optional<ConfigValue> scalar(const toml::node& node) {
-  if (const auto* i = node.as_integer()) return static_cast<std::int64_t>(i->get());
-  if (const auto* d = node.as_floating_point()) return d->get();
-  if (const auto* s = node.as_string()) return s->get();
-  if (const auto* b = node.as_boolean()) return b->get();
-  return std::nullopt;
-}
 
 // reads one study file: its keys in turn, each checked for its type
 class StudyReader {
@@ -68,7 +61,7 @@ class StudyReader {
         axis.label = text(value, where + " label");
       } else if (key == "values" && value.is_array()) {
         for (const auto& v : *value.as_array()) {
-          const auto x = scalar(v);
+          const auto x = detail::toml_scalar(v);
           if (!x) fail(where + " values: must be numbers or strings");
           axis.values.push_back(*x);
         }
@@ -107,19 +100,7 @@ std::string default_study_file() {
 }
 
 Study read_study(const std::string& path) {
-  std::string text, why;
-  if (!read_regular_file(path, text, why)) {
-    throw ConfigError("cannot read study file '" + path + "': " + why);
-  }
-  toml::table table;
-  try {
-    table = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << path << ":" << e.source().begin.line << ":" << e.source().begin.column
-        << ": invalid TOML: " << e.description();
-    throw ConfigError(msg.str());
-  }
+  const toml::table table = detail::parse_toml_file(path, "study file");
   const StudyReader read(path);
   Study study;
   study.file = path;

@@ -1,8 +1,9 @@
 #pragma once
-// Reading TOML input files (private to the io library): scenario, preset and sweep files.
+// Reading TOML input files: scenario, preset and sweep files, and studies' files (toml++).
 
 #include <toml++/toml.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,5 +24,8 @@ toml::table parse_toml_file(const std::string& path, const std::string& what);
 /// ConfigError naming `path` for a key nested deeper than kMaxKeyDepth.
 void flatten(const toml::table& table, const std::string& prefix, const std::string& path,
              Layer layer, std::vector<Setting>& out, int depth = 1);
+
+/// A TOML scalar as a config value; nullopt for an array, a table, a date or a time.
+std::optional<ConfigValue> toml_scalar(const toml::node& node);
 
 }  // namespace plumetrace::detail

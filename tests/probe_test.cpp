@@ -105,3 +105,84 @@ TEST(Probe, SameSeedSameResult) {
 
 }  // namespace
 }  // namespace plumetrace
+
+namespace plumetrace {
+namespace {
+
+ProbeOptions short_options() {
+  ProbeOptions options;
+  options.warmup = 20.0;
+  options.duration = 16.0;
+  options.interval = 0.32;
+  options.seed = 3;
+  return options;
+}
+
+TEST(ProbeStatistics, TheDetectionMapIsTheProbeAtEveryCellCentre) {
+  Scenario s;
+  const MapGrid grid = arena_grid(s, 2.0, 0.5);
+  ASSERT_EQ(grid.x.size(), 8u);  // arena 0..16 m by -2..2 m (docs/model.md section 1)
+  ASSERT_EQ(grid.y.size(), 8u);
+  EXPECT_DOUBLE_EQ(grid.z, s.odor.height);
+  const auto map = detection_map(s, grid, short_options());
+  std::vector<Vec3> points;
+  for (const double y : grid.y) {
+    for (const double x : grid.x) points.push_back({x, y, grid.z});
+  }
+  const auto direct = probe_plume(s, points, short_options());
+  ASSERT_EQ(map.size(), grid.y.size());
+  for (std::size_t j = 0; j < grid.y.size(); ++j) {
+    ASSERT_EQ(map[j].size(), grid.x.size());
+    for (std::size_t i = 0; i < grid.x.size(); ++i) {
+      EXPECT_EQ(map[j][i], direct[j * grid.x.size() + i].detect_fraction);
+    }
+  }
+}
+
+TEST(ProbeStatistics, CentrelinesLeaveThePointsUnchangedAndFollowTheSource) {
+  Scenario s;
+  ProbeOptions options = short_options();
+  const std::vector<Vec3> points{{2.0, 0.0, s.odor.height}, {6.0, 0.1, s.odor.height}};
+  const auto alone = probe_plume(s, points, options);
+  options.centreline_x = {3.0, 1000.0};
+  const ProbeReport report = probe_report(s, points, options);
+  ASSERT_EQ(report.points.size(), alone.size());
+  for (std::size_t i = 0; i < alone.size(); ++i) {
+    EXPECT_EQ(report.points[i].detect_fraction, alone[i].detect_fraction);
+    EXPECT_EQ(report.points[i].mean_concentration, alone[i].mean_concentration);
+  }
+  // laminar wind along x: the centreline 2 m downwind stays on the source's y; the random walk
+  // (sigma_p 0.02 m/s) spreads a slab's mean by far less than the source radius
+  const CentrelineResult& near = report.centrelines[0];
+  EXPECT_EQ(near.samples, 50);
+  EXPECT_EQ(near.empty, 0);
+  EXPECT_NEAR(near.mean_y, s.source.center.y, 0.02);
+  EXPECT_GT(near.std_y, 0.0);
+  EXPECT_LT(near.std_y, 0.05);
+  // no filament ever reaches x = 1000 m
+  EXPECT_EQ(report.centrelines[1].samples, 0);
+  EXPECT_EQ(report.centrelines[1].empty, 50);
+  EXPECT_TRUE(std::isnan(report.centrelines[1].mean_y));
+
+  Scenario moved = s;
+  moved.source.center.y = 0.7;
+  moved.robot.start.y = 0.7;
+  const auto shifted = probe_report(moved, points, options).centrelines[0];
+  EXPECT_NEAR(shifted.mean_y, 0.7, 0.02);
+}
+
+TEST(ProbeStatistics, ABadSlabIsRefusedNamingTheOption) {
+  Scenario s;
+  ProbeOptions options = short_options();
+  options.centreline_x = {3.0};
+  options.centreline_slab = 0.0;
+  try {
+    probe_report(s, {}, options);
+    FAIL() << "a slab of 0 m was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--slab"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace plumetrace

@@ -57,6 +57,8 @@ struct ProbeCommand final : Command {
   ProbeOptions options;
   std::string seed = "1";
   bool json = false;
+  std::string centreline;
+  std::string map;
 
   CLI::App* add(CLI::App& app) override;
   int run() override;

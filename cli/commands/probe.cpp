@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "validators.hpp"
 
@@ -30,6 +31,23 @@ std::vector<Vec3> parse_points(const std::string& text) {
   return points;
 }
 
+// "x;x;..." as numbers; empty: none
+std::vector<double> parse_positions(const std::string& text) {
+  std::vector<double> xs;
+  std::stringstream all(text);
+  std::string item;
+  while (std::getline(all, item, ';')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    double v;
+    char extra;
+    if (std::sscanf(item.c_str(), " %lf %c", &v, &extra) != 1 || !std::isfinite(v)) {
+      throw ConfigError("--centreline: '" + item + "' is not a number x (m)");
+    }
+    xs.push_back(v);
+  }
+  return xs;
+}
+
 }  // namespace
 
 CLI::App* ProbeCommand::add(CLI::App& app) {
@@ -44,6 +62,16 @@ CLI::App* ProbeCommand::add(CLI::App& app) {
   sub->add_option("--interval", options.interval, "time between samples (s)")
       ->check(finite_number(0.0, true));
   sub->add_option("--seed", seed, "master seed (default 1)");
+  sub->add_option("--centreline", centreline,
+                  "downwind positions \"x;x;...\" (m) where the plume's centreline is measured: "
+                  "mean and spread of its lateral position");
+  sub->add_option("--slab", options.centreline_slab,
+                  "width along x of the filaments averaged for the centreline (m, default 0.2)")
+      ->check(finite_number(0.0, true));
+  sub->add_option("--map", map,
+                  "also write the detection map over the arena (0.2 x 0.05 m cells at the "
+                  "sensor height) to this JSON file")
+      ->check(not_empty());
   sub->add_flag("--json", json, "print JSON");
   return sub;
 }
@@ -52,15 +80,27 @@ int ProbeCommand::run() {
   const Scenario s = scenario.load();
   const auto at = parse_points(points);
   options.seed = parse_u64("--seed", seed);
-  const auto results = probe_plume(s, at, options);
+  options.centreline_x = parse_positions(centreline);
+  if (!map.empty()) check_writable(map);
+  const ProbeReport report = probe_report(s, at, options);
   if (json) {
-    std::cout << probe_to_json(results) << std::endl;
+    std::cout << probe_to_json(report) << std::endl;
   } else {
+    // why: "detect" is the intermittency, the fraction of instants with odor
     std::cout << "       x        y        z   detect   mean C\n";
-    for (const auto& r : results) {
+    for (const auto& r : report.points) {
       std::printf("%8.3f %8.3f %8.3f   %6.3f   %.4g\n", r.point.x, r.point.y, r.point.z,
                   r.detect_fraction, r.mean_concentration);
     }
+    if (!report.centrelines.empty()) std::cout << "centreline x   mean y    std y  instants\n";
+    for (const auto& c : report.centrelines) {
+      std::printf("%11.3f %8.3f %8.3f  %ld of %ld\n", c.x, c.mean_y, c.std_y, c.samples,
+                  c.samples + c.empty);
+    }
+  }
+  if (!map.empty()) {
+    const MapGrid grid = arena_grid(s);
+    write_text_file(map, detection_map_to_json(grid, detection_map(s, grid, options)));
   }
   return 0;
 }

@@ -23,7 +23,9 @@ std::string result_to_json(const RunResult& result, const RunInfo& info) {
   return result_json(result, info).dump();
 }
 
-std::string probe_to_json(const std::vector<ProbeResult>& results) {
+namespace {
+
+json points_json(const std::vector<ProbeResult>& results) {
   json points = json::array();
   for (const auto& r : results) {
     points.push_back({{"x", r.point.x},
@@ -31,9 +33,33 @@ std::string probe_to_json(const std::vector<ProbeResult>& results) {
                       {"z", r.point.z},
                       {"detect_fraction", r.detect_fraction},
                       {"mean_concentration", r.mean_concentration},
+                      {"intermittency", r.detect_fraction},
                       {"samples", r.samples}});
   }
-  return json{{"points", points}}.dump();
+  return points;
+}
+
+}  // namespace
+
+std::string probe_to_json(const std::vector<ProbeResult>& results) {
+  return json{{"points", points_json(results)}}.dump();
+}
+
+std::string probe_to_json(const ProbeReport& report) {
+  json centrelines = json::array();
+  for (const auto& c : report.centrelines) {
+    centrelines.push_back({{"x", c.x},
+                           {"mean_y", number_or_null(c.mean_y)},
+                           {"std_y", number_or_null(c.std_y)},
+                           {"samples", c.samples},
+                           {"empty", c.empty}});
+  }
+  return json{{"points", points_json(report.points)}, {"centrelines", centrelines}}.dump();
+}
+
+std::string detection_map_to_json(const MapGrid& grid,
+                                  const std::vector<std::vector<double>>& fraction) {
+  return json{{"x", grid.x}, {"y", grid.y}, {"z", grid.z}, {"fraction", fraction}}.dump() + "\n";
 }
 
 namespace {

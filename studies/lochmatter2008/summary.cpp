@@ -244,30 +244,13 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
 }
 
 // fraction of instants with odor on a grid over the arena (the background of Fig. 6)
-json detection_map(const Scenario& scenario, std::uint64_t seed) {
-  const auto& a = scenario.arena;
-  constexpr double kDx = 0.2, kDy = 0.05;
-  std::vector<double> xs, ys;
-  for (double x = a.x_min + kDx / 2; x < a.x_max; x += kDx) xs.push_back(x);
-  for (double y = a.y_min + kDy / 2; y < a.y_max; y += kDy) ys.push_back(y);
-  std::vector<Vec3> points;
-  for (const double y : ys) {
-    for (const double x : xs) points.push_back({x, y, scenario.odor.height});
-  }
+json detection_map_json(const Scenario& scenario, std::uint64_t seed) {
+  const MapGrid grid = arena_grid(scenario);
   ProbeOptions options;
   options.duration = 20.0;
   options.interval = 0.32;
   options.seed = seed;
-  const auto results = probe_plume(scenario, points, options);
-  json fraction = json::array();
-  for (std::size_t j = 0; j < ys.size(); ++j) {
-    json row = json::array();
-    for (std::size_t i = 0; i < xs.size(); ++i) {
-      row.push_back(results[j * xs.size() + i].detect_fraction);
-    }
-    fraction.push_back(row);
-  }
-  return {{"x", xs}, {"y", ys}, {"fraction", fraction}};
+  return {{"x", grid.x}, {"y", grid.y}, {"fraction", detection_map(scenario, grid, options)}};
 }
 
 json sweep_definition_json(const SweepDef& def) {
@@ -360,7 +343,7 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
   if (const ExpandedSweep* a = first_set(sweeps, info, reading.name, main)) {
     const Scenario& sc = a->points.at(0).scenario;
     const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
-    if (!maps.count(key)) maps[key] = detection_map(sc, a->def.seed);
+    if (!maps.count(key)) maps[key] = detection_map_json(sc, a->def.seed);
     doc["detection_map"] = maps[key];
     doc["success_radius"] = sc.supervisor.success_radius;
     // the value every compared key takes under this reading, preset or built-in default
@@ -503,7 +486,7 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
     if (!readings.empty() && readings[0].contains("detection_map")) {
       doc["detection_map"] = readings[0]["detection_map"];
     } else {
-      doc["detection_map"] = detection_map(s, a->def.seed);
+      doc["detection_map"] = detection_map_json(s, a->def.seed);
     }
     doc["arena"] = {{"x_min", s.arena.x_min},
                     {"x_max", s.arena.x_max},

@@ -14,8 +14,15 @@ namespace plumetrace {
 /// One run's result as a JSON object (keys as documented for `plumetrace run --json`).
 std::string result_to_json(const RunResult& result, const RunInfo& info);
 
-/// Probe results as {"points": [...]}.
+/// Probe results as {"points": [...]}; each point's detect_fraction is also its intermittency.
 std::string probe_to_json(const std::vector<ProbeResult>& results);
+
+/// A probe report as {"points": [...], "centrelines": [{x, mean_y, std_y, samples, empty}]}.
+std::string probe_to_json(const ProbeReport& report);
+
+/// A detection map as {"x": [...], "y": [...], "z": z, "fraction": [[...] per y]}.
+std::string detection_map_to_json(const MapGrid& grid,
+                                  const std::vector<std::vector<double>>& fraction);
 
 /// Writes one CSV row per stored run: sweep, point, one column per axis key (union over the
 /// sweeps), trial, seed, config hash and every metric. Throws IoError naming the file.

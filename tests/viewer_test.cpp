@@ -194,6 +194,45 @@ TEST(Trace, JsonTraceReadsBackBitForBit) {
   EXPECT_EQ(back.trace.snapshots.back().w, run.trace.snapshots.back().w);
 }
 
+TEST(Trace, SnapshotsCarryTheTrueWindOnTheTraceGridAndReadItBack) {
+  RecordedRun run = recorded_run();
+  const WindGrid& g = run.trace.wind_grid;
+  // the default arena, 16 m by 4 m, in 1 m by 0.5 m cells at the sensor's height
+  EXPECT_EQ(g.nx, 16);
+  EXPECT_EQ(g.ny, 8);
+  EXPECT_DOUBLE_EQ(g.x0, 0.5);
+  EXPECT_DOUBLE_EQ(g.y0, -1.75);
+  EXPECT_DOUBLE_EQ(g.z, run.scenario.odor.height);
+  ASSERT_FALSE(run.trace.snapshots.empty());
+  for (const auto& snap : run.trace.snapshots) {
+    ASSERT_EQ(snap.wind_x.size(), g.size());
+    ASSERT_EQ(snap.wind_y.size(), g.size());
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      ASSERT_EQ(snap.wind_x[k], run.scenario.wind.velocity.x);
+      ASSERT_EQ(snap.wind_y[k], run.scenario.wind.velocity.y);
+    }
+  }
+  const std::string path = testing::temp_path("wind", ".json");
+  write_trace(path, run.trace, run.scenario, run.result, run.info);
+  const RecordedRun back = read_trace(path);
+  EXPECT_EQ(back.trace.wind_grid.nx, g.nx);
+  EXPECT_EQ(back.trace.wind_grid.dy, g.dy);
+  EXPECT_EQ(back.trace.snapshots.back().wind_x, run.trace.snapshots.back().wind_x);
+
+  // a snapshot whose wind does not fit the grid is refused, naming the file
+  run.trace.snapshots.back().wind_x.pop_back();
+  run.trace.snapshots.back().wind_y.pop_back();
+  const std::string bad = testing::temp_path("badwind", ".json");
+  write_trace(bad, run.trace, run.scenario, run.result, run.info);
+  try {
+    read_trace(bad);
+    FAIL() << "a wind field of the wrong size was read";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("wind_grid"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Trace, JsonTraceWrittenPieceByPieceIsTheDumpOfTheWholeDocument) {
   const RecordedRun run = recorded_run();
   ASSERT_GT(run.trace.snapshots.size(), 2u);

@@ -68,10 +68,17 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
     for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
       const auto& snap = trace.snapshots[i];
       if (i > 0) out << ',';
-      out << json{{"time", snap.time}, {"x", snap.x}, {"y", snap.y}, {"z", snap.z}, {"w", snap.w}}
+      out << json{{"time", snap.time}, {"x", snap.x},           {"y", snap.y},
+                  {"z", snap.z},       {"w", snap.w},           {"wind_x", snap.wind_x},
+                  {"wind_y", snap.wind_y}}
                  .dump();
     }
-    out << R"(],"steps":)" << steps.dump() << "}\n";
+    const WindGrid& g = trace.wind_grid;
+    out << R"(],"steps":)" << steps.dump() << R"(,"wind_grid":)"
+        << json{{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
+                {"dy", g.dy}, {"ny", g.ny}, {"z", g.z}}
+               .dump()
+        << "}\n";
     file.commit();
     return;
   }
@@ -242,11 +249,35 @@ RecordedRun read_trace(const std::string& path) {
       f.y = snap.at("y").get<std::vector<double>>();
       f.z = snap.at("z").get<std::vector<double>>();
       f.w = snap.at("w").get<std::vector<double>>();
+      // why: traces of 0.3.0 carry no wind field
+      if (snap.contains("wind_x")) {
+        f.wind_x = snap.at("wind_x").get<std::vector<double>>();
+        f.wind_y = snap.at("wind_y").get<std::vector<double>>();
+      }
       if (f.y.size() != f.x.size() || f.z.size() != f.x.size() || f.w.size() != f.x.size()) {
         throw ConfigError("trace '" + path +
                           "': a filament snapshot has columns of unequal length");
       }
       run.trace.snapshots.push_back(std::move(f));
+    }
+    if (doc.contains("wind_grid")) {
+      const json& g = doc.at("wind_grid");
+      WindGrid& grid = run.trace.wind_grid;
+      grid.x0 = g.at("x0").get<double>();
+      grid.dx = g.at("dx").get<double>();
+      grid.y0 = g.at("y0").get<double>();
+      grid.dy = g.at("dy").get<double>();
+      grid.z = g.at("z").get<double>();
+      // why: a viewer loops over the nodes; a damaged count must not make it loop for ever
+      grid.nx = trace_integer<int>(g.at("nx"), path, "wind_grid.nx", 0, 100000);
+      grid.ny = trace_integer<int>(g.at("ny"), path, "wind_grid.ny", 0, 100000);
+    }
+    for (const auto& f : run.trace.snapshots) {
+      if (f.wind_y.size() != f.wind_x.size() ||
+          (!f.wind_x.empty() && f.wind_x.size() != run.trace.wind_grid.size())) {
+        throw ConfigError("trace '" + path +
+                          "': a snapshot's wind does not match the trace's wind_grid");
+      }
     }
   } catch (const json::exception& e) {
     throw ConfigError("trace '" + path + "': not a valid plumetrace trace (" + e.what() + ")");

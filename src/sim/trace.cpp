@@ -19,6 +19,19 @@ long snapshot_steps(double interval, double dt) {
 
 }  // namespace
 
+WindGrid trace_wind_grid(const Scenario& scenario) {
+  const auto& a = scenario.arena;
+  WindGrid g;
+  g.nx = std::max(1, static_cast<int>(std::floor((a.x_max - a.x_min) / g.dx)));
+  g.ny = std::max(1, static_cast<int>(std::floor((a.y_max - a.y_min) / g.dy)));
+  g.dx = (a.x_max - a.x_min) / g.nx;
+  g.dy = (a.y_max - a.y_min) / g.ny;
+  g.x0 = a.x_min + g.dx / 2.0;
+  g.y0 = a.y_min + g.dy / 2.0;
+  g.z = scenario.odor.height;
+  return g;
+}
+
 TraceRecorder::TraceRecorder(Trace& trace, double snapshot_interval, double dt)
     : trace_(trace), snapshot_every_(snapshot_steps(snapshot_interval, dt)) {}
 
@@ -46,6 +59,16 @@ void TraceRecorder::operator()(const World& world) {
       snap.y.assign(f.y.begin(), f.y.end());
       snap.z.assign(f.z.begin(), f.z.end());
       snap.w.assign(f.w.begin(), f.w.end());
+      if (trace_.snapshots.empty()) trace_.wind_grid = trace_wind_grid(world.scenario());
+      const WindGrid& g = trace_.wind_grid;
+      const WindField& wind = *world.environment().wind;
+      for (int j = 0; j < g.ny; ++j) {
+        for (int i = 0; i < g.nx; ++i) {
+          const Vec3 v = wind.velocity({g.x0 + i * g.dx, g.y0 + j * g.dy, g.z});
+          snap.wind_x.push_back(v.x);
+          snap.wind_y.push_back(v.y);
+        }
+      }
       trace_.snapshots.push_back(std::move(snap));
     }
   }

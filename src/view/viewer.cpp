@@ -163,6 +163,7 @@ constexpr const char* kRobotColor = "#e15759";
 constexpr const char* kDetectionColor = "#000000";
 constexpr const char* kWindColor = "#555555";
 constexpr const char* kTrueWindColor = "#aaaaaa";
+constexpr const char* kWindFieldColor = "#c4c4c4";
 // wind arrows: metres drawn per m/s
 constexpr double kWindArrowScale = 0.25;
 
@@ -261,6 +262,24 @@ void put_u16(std::vector<std::uint8_t>& out, std::uint16_t v) {
   out.push_back(static_cast<std::uint8_t>(v >> 8));
 }
 
+// the true wind at the trace's grid for each kept snapshot (none for a trace without one)
+json wind_field_json(const RecordedRun& run, const std::vector<std::size_t>& kept) {
+  const WindGrid& g = run.trace.wind_grid;
+  json u = json::array(), v = json::array();
+  for (const std::size_t i : kept) {
+    const auto& s = run.trace.snapshots[i];
+    json su = json::array(), sv = json::array();
+    for (std::size_t k = 0; k < s.wind_x.size(); ++k) {
+      su.push_back(rounded(s.wind_x[k], 1e-3));
+      sv.push_back(rounded(s.wind_y[k], 1e-3));
+    }
+    u.push_back(std::move(su));
+    v.push_back(std::move(sv));
+  }
+  return {{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
+          {"dy", g.dy}, {"ny", g.ny}, {"u", u},     {"v", v}};
+}
+
 json snapshots_json(const RecordedRun& run, const std::vector<std::size_t>& kept,
                     const ShadeRange& range) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -297,7 +316,8 @@ json snapshots_json(const RecordedRun& run, const std::vector<std::size_t>& kept
           {"w", {{"origin", qw.origin}, {"unit", qw.unit}, {"data", view::base64(ws)}}},
           {"shade", view::base64(shades)},
           {"peak_lo", std::pow(10.0, range.lo)},
-          {"peak_hi", std::pow(10.0, range.hi)}};
+          {"peak_hi", std::pow(10.0, range.hi)},
+          {"wind_field", wind_field_json(run, kept)}};
 }
 
 // everything the page draws, thinned as the options say
@@ -309,6 +329,7 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
   json style{{"plume", kPlumeColor},         {"robot", kRobotColor},
              {"detection", kDetectionColor}, {"wind", kWindColor},
              {"true_wind", kTrueWindColor},  {"wind_arrow_scale", kWindArrowScale},
+             {"wind_field", kWindFieldColor},
              {"states", json::array()}};
   for (std::size_t i = 0; i < names.size(); ++i) style["states"].push_back(view::state_color(i));
 

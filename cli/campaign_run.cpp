@@ -41,15 +41,14 @@ bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep
   return false;
 }
 
-int draw_report(const std::string& out) {
+int draw_report(const std::string& out, const std::string& module) {
   const std::string python_path = std::string(kSourceDir) + "/python";
   // what the report prints follows what was printed here
   std::fflush(nullptr);
-  const int rc =
-      run_program({kPython, "-m", "plumetrace.report", out}, {"PYTHONPATH=" + python_path});
+  const int rc = run_program({kPython, "-m", module, out}, {"PYTHONPATH=" + python_path});
   if (rc != 0) {
     const std::string command = "PYTHONPATH=" + shell_word(python_path) + " " +
-                                shell_word(kPython) + " -m plumetrace.report " + shell_word(out);
+                                shell_word(kPython) + " -m " + module + " " + shell_word(out);
     std::fprintf(stderr,
                  "plumetrace: error: drawing the report failed (%s); the results are kept in "
                  "%s/\n",

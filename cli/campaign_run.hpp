@@ -16,8 +16,8 @@ bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep
                        Store& store, int runs, const CampaignFlags& flags, CampaignResult& result,
                        const Shard& shard = {}, const TaskRunner& runner = {});
 
-/// Draws report.html and report.md from OUT/summary.json (python -m plumetrace.report OUT);
-/// returns 0, or kIoFailure after saying that it failed.
-int draw_report(const std::string& out);
+/// Draws report.html and report.md from the results in OUT (python -m MODULE OUT; the paper's
+/// report by default); returns 0, or kIoFailure after saying that it failed.
+int draw_report(const std::string& out, const std::string& module = "plumetrace.report");
 
 }  // namespace plumetrace::cli

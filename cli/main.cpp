@@ -42,9 +42,11 @@ int main(int argc, char** argv) {
   MergeCommand merge;
   ReproduceCommand reproduce(command_line(argc, argv));
   SensitivityCommand sensitivity;
+  StudyCommand study;
   std::vector<std::pair<CLI::App*, Command*>> commands;
-  for (Command* c : std::initializer_list<Command*>{
-           &run, &view, &probe, &config, &sweep, &export_store, &merge, &reproduce, &sensitivity}) {
+  for (Command* c :
+       std::initializer_list<Command*>{&run, &view, &probe, &config, &sweep, &export_store, &merge,
+                                       &reproduce, &sensitivity, &study}) {
     commands.emplace_back(c->add(app), c);
   }
 

@@ -139,4 +139,15 @@ struct SensitivityCommand final : Command {
   int run() override;
 };
 
+/// `plumetrace study FOLDER ...`: a study's sweep files as one campaign, its exports and report.
+struct StudyCommand final : Command {
+  std::string folder;
+  int runs = 0;
+  CampaignFlags flags;
+  CLI::Option* out_option = nullptr;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
 }  // namespace plumetrace::cli

@@ -1,0 +1,78 @@
+"""The meander study's report drawn from synthetic results.json files (studies/meander/report.py)."""
+
+import json
+import math
+
+import pytest
+
+from plumetrace.studies.meander import report
+
+
+def wilson(k, n, z=1.959963984540054):
+    p = k / n
+    d = 1 + z * z / n
+    c = (p + z * z / (2 * n)) / d
+    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
+    return c - h, c + h
+
+
+def point(values, successes, runs=50, overhead=1.3):
+    lo, hi = wilson(successes, runs)
+    return {"values": values, "stats": {
+        "runs": runs, "successes": successes, "success_rate": successes / runs,
+        "success_lo": lo, "success_hi": hi,
+        "overhead": {"mean": overhead, "lo": overhead - 0.05, "hi": overhead + 0.05}}}
+
+
+def sweep(name, title, key, label, table):
+    """table: {other value: [successes at gains 0, 1, 2]}"""
+    gains = [0.0, 1.0, 2.0]
+    points = [point([v, g], s) for v, row in table.items() for g, s in zip(gains, row)]
+    return {"name": name, "title": title, "points": points,
+            "axes": [{"key": key, "label": label, "values": list(table)},
+                     {"key": "wind.meander_gain", "label": "gain", "values": gains}]}
+
+
+def write(tmp_path, sweeps):
+    (tmp_path / "results.json").write_text(json.dumps({"plumetrace_results": 1, "sweeps": sweeps}))
+    return tmp_path
+
+
+def test_the_title_names_the_algorithm_that_degrades_least_and_the_d_lost_effect(tmp_path):
+    out = write(tmp_path, [
+        sweep("M", "algorithms", "controller.algorithm", "algorithm",
+              {"casting": [45, 30, 10], "surge-spiral": [48, 40, 25], "surge-cast": [49, 48, 46]}),
+        sweep("L", "surge-cast: d_lost", "surge_cast.d_lost", "d_lost",
+              {"0.5": [49, 48, 45], "2.0": [49, 40, 15]}),
+    ])
+    written = report.build_report(out)
+    html = (out / "report.html").read_text()
+    md = (out / "report.md").read_text()
+    assert [p.name for p in written] == ["report.html", "report.md"]
+    assert "Beyond the paper: surge-cast degrades least" in md.splitlines()[0]
+    assert "a larger d_lost hurts in strong meander for 1 of 1 algorithms" in md.splitlines()[0]
+    assert (out / "figures" / "meander_M.png").stat().st_size > 1000
+    assert "figures/meander_L.png" in md
+    assert html.count("<img") == 2
+
+
+def test_overlapping_intervals_are_not_called_a_difference(tmp_path):
+    out = write(tmp_path, [
+        sweep("M", "algorithms", "controller.algorithm", "algorithm",
+              {"casting": [40, 38, 35], "surge-cast": [40, 37, 33]}),
+        sweep("L", "casting: d_lost", "casting.d_lost", "d_lost",
+              {"0.5": [40, 38, 36], "2.0": [40, 37, 34]}),
+    ])
+    report.build_report(out)
+    first = (out / "report.md").read_text().splitlines()[0]
+    assert "do not separate it from surge-cast" in first
+    assert "no algorithm is clearly hurt by a larger d_lost" in first
+
+
+def test_a_sweep_without_a_strength_axis_is_refused(tmp_path):
+    bad = sweep("M", "algorithms", "controller.algorithm", "algorithm", {"casting": [1, 2, 3]})
+    bad["axes"][1]["key"] = "sim.dt"
+    out = write(tmp_path, [bad])
+    with pytest.raises(report.MeanderReportError, match="wind.meander_gain"):
+        report.build_report(out)
+    assert report.main([str(tmp_path / "nowhere")]) == 2

@@ -1,0 +1,204 @@
+"""The meander study's report: "Beyond the paper" (docs/meander.md).
+
+Reads OUT/results.json of `plumetrace study studies/meander` and draws, for each sweep, the two
+panels of the paper (success rate and distance overhead) against meander strength, one line per
+value of the sweep's other axis; then states from the data which algorithm degrades least and
+whether a larger d_lost hurts in meander.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Optional
+
+from plumetrace.report.figures import _new_figure, _save
+from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
+
+STRENGTH_KEY = "wind.meander_gain"
+COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1")
+
+
+class MeanderReportError(Exception):
+    """results.json is missing, unreadable or not from the meander study."""
+
+
+class Curve:
+    """One line of a panel: the points of one value of the sweep's other axis, by strength."""
+
+    def __init__(self, label: str):
+        self.label = label
+        self.x: list = []
+        self.rate: list = []
+        self.lo: list = []
+        self.hi: list = []
+        self.runs: list = []
+        self.overhead: list = []
+        self.oh_lo: list = []
+        self.oh_hi: list = []
+
+    def add(self, x: float, stats: dict) -> None:
+        oh = stats.get("overhead") or {}
+        self.x.append(x)
+        self.rate.append(stats["success_rate"])
+        self.lo.append(stats["success_lo"])
+        self.hi.append(stats["success_hi"])
+        self.runs.append(stats["runs"])
+        self.overhead.append(oh.get("mean"))
+        self.oh_lo.append(oh.get("lo"))
+        self.oh_hi.append(oh.get("hi"))
+
+
+def curves(sweep: dict) -> tuple:
+    """(label of the other axis, its key, [Curve]) of a sweep with a strength axis."""
+    keys = [a["key"] for a in sweep["axes"]]
+    if STRENGTH_KEY not in keys or len(keys) != 2:
+        raise MeanderReportError(f"sweep {sweep['name']}: needs two axes, one of them "
+                                 f"{STRENGTH_KEY} (has {', '.join(keys)})")
+    s = keys.index(STRENGTH_KEY)
+    o = 1 - s
+    by_value: dict = {}
+    for p in sweep["points"]:
+        value = p["values"][o]
+        by_value.setdefault(str(value), Curve(str(value))).add(float(p["values"][s]), p["stats"])
+    for c in by_value.values():
+        order = sorted(range(len(c.x)), key=lambda i: c.x[i])
+        for name in ("x", "rate", "lo", "hi", "runs", "overhead", "oh_lo", "oh_hi"):
+            setattr(c, name, [getattr(c, name)[i] for i in order])
+    axis = sweep["axes"][o]
+    return axis.get("label") or axis["key"], axis["key"], list(by_value.values())
+
+
+def panels(sweep: dict, label: str, lines: list, path: Path) -> Path:
+    fig = _new_figure(9.0, 3.4)
+    ax_s, ax_o = fig.subplots(1, 2)
+    for k, c in enumerate(lines):
+        color = COLORS[k % len(COLORS)]
+        err = [[r - lo for r, lo in zip(c.rate, c.lo)], [hi - r for r, hi in zip(c.rate, c.hi)]]
+        ax_s.errorbar(c.x, c.rate, yerr=err, color=color, marker="o", ms=3, capsize=2,
+                      label=c.label)
+        xs = [x for x, m in zip(c.x, c.overhead) if m is not None]
+        ms = [m for m in c.overhead if m is not None]
+        lo = [m - lo for m, lo in zip(c.overhead, c.oh_lo) if m is not None and lo is not None]
+        hi = [hi - m for m, hi in zip(c.overhead, c.oh_hi) if m is not None and hi is not None]
+        if xs and len(lo) == len(xs) and len(hi) == len(xs):
+            ax_o.errorbar(xs, ms, yerr=[lo, hi], color=color, marker="o", ms=3, capsize=2)
+    ax_s.set_ylim(0, 1.05)
+    ax_s.set_xlabel("meander strength: boundary noise gain")
+    ax_s.set_ylabel("success rate (95% Wilson CI)")
+    ax_o.set_xlabel("meander strength: boundary noise gain")
+    ax_o.set_ylabel("distance overhead d_t / d_u (95% CI)")
+    ax_s.legend(title=label, fontsize=8, title_fontsize=8)
+    fig.suptitle(f"{sweep['name']}: {sweep['title']}", fontsize=10)
+    return _save(fig, path)
+
+
+def pct(v: Optional[float]) -> str:
+    return "n/a" if v is None else f"{100 * v:.0f}%"
+
+
+def interval(c: Curve, i: int) -> str:
+    return f"{pct(c.rate[i])} [{pct(c.lo[i])}, {pct(c.hi[i])}]"
+
+
+def degradation(lines: list) -> tuple:
+    """Sentence and short verdict on which line loses least success from the weakest to the
+    strongest meander; the data separate two lines only when their strongest-meander intervals
+    do not overlap."""
+    drops = sorted(((c.rate[0] - c.rate[-1], c) for c in lines), key=lambda d: d[0])
+    best = drops[0][1]
+    parts = [f"{c.label}: {interval(c, 0)} at gain {c.x[0]:g}, {interval(c, -1)} at gain "
+             f"{c.x[-1]:g} (drop {100 * d:+.0f} points)" for d, c in drops]
+    runner = drops[1][1] if len(drops) > 1 else None
+    separated = runner is not None and (best.lo[-1] > runner.hi[-1] or best.hi[-1] < runner.lo[-1])
+    if runner is None:
+        verdict = f"{best.label} alone"
+    elif separated:
+        verdict = f"{best.label} degrades least"
+    else:
+        verdict = (f"{best.label} degrades least in the point estimates, but the data do not "
+                   f"separate it from {runner.label} at the strongest meander")
+    return verdict, "; ".join(parts) + "."
+
+
+def d_lost_effect(lines: list) -> tuple:
+    """Whether the largest d_lost succeeds less than the smallest at the strongest meander (by
+    non-overlapping 95% intervals), with the same comparison in the weakest meander."""
+    by_d = sorted(lines, key=lambda c: float(c.label))
+    small, large = by_d[0], by_d[-1]
+    diff_strong = large.rate[-1] - small.rate[-1]
+    diff_weak = large.rate[0] - small.rate[0]
+    hurts = large.hi[-1] < small.lo[-1]
+    helps = large.lo[-1] > small.hi[-1]
+    text = (f"d_lost {large.label} against {small.label}: {interval(large, -1)} against "
+            f"{interval(small, -1)} at the strongest meander (difference {100 * diff_strong:+.0f} "
+            f"points), {100 * diff_weak:+.0f} points in the weakest.")
+    verdict = "hurts" if hurts else "helps" if helps else "makes no clear difference"
+    return verdict, text
+
+
+def build_report(out_dir) -> list:
+    out = Path(out_dir)
+    path = out / "results.json"
+    try:
+        results = json.loads(path.read_text())
+    except (OSError, ValueError) as e:
+        raise MeanderReportError(f"cannot read {path}: {e}") from e
+    fig_dir = out / "figures"
+    fig_dir.mkdir(parents=True, exist_ok=True)
+    sections, findings, d_verdicts = [], [], []
+    algorithm_verdict = None
+    for sweep in results.get("sweeps", []):
+        label, key, lines = curves(sweep)
+        png = panels(sweep, label, lines, fig_dir / f"meander_{sweep['name']}.png")
+        blocks = [Fig(path=png, rel=png.relative_to(out).as_posix(),
+                      caption=f"{sweep['title']}: success rate and distance overhead against "
+                              f"meander strength, one line per {label}.",
+                      alt=f"two panels for sweep {sweep['name']}")]
+        rows = []
+        for c in lines:
+            for i, x in enumerate(c.x):
+                oh = "n/a" if c.overhead[i] is None else f"{c.overhead[i]:.3f}"
+                rows.append([c.label, f"{x:g}", str(c.runs[i]), interval(c, i), oh])
+        blocks.append(Table(header=[label, "gain", "runs", "success [95% CI]", "overhead"],
+                            rows=rows))
+        if key == "controller.algorithm":
+            algorithm_verdict, text = degradation(lines)
+            blocks.insert(0, Para([f"{algorithm_verdict[0].upper()}{algorithm_verdict[1:]}: {text}"]))
+        elif key.endswith(".d_lost"):
+            verdict, text = d_lost_effect(lines)
+            d_verdicts.append((sweep["title"], verdict))
+            blocks.insert(0, Para([f"A larger d_lost {verdict} here: {text}"]))
+        sections.append(Section(anchor=f"sweep-{sweep['name']}",
+                                title=f"{sweep['name']}: {sweep['title']}", blocks=blocks))
+    if algorithm_verdict:
+        findings.append(algorithm_verdict)
+    hurts = [t for t, v in d_verdicts if v == "hurts"]
+    if d_verdicts:
+        findings.append(f"a larger d_lost hurts in strong meander for {len(hurts)} of "
+                        f"{len(d_verdicts)} algorithms" if hurts else
+                        "no algorithm is clearly hurt by a larger d_lost in strong meander")
+    title = "Beyond the paper: " + ("; ".join(findings) if findings else "meandering wind")
+    intro = [Para(["The paper closes: \u201cIn future work, we will test the algorithms in "
+                   "turbulent flow and/or meandering plume conditions.\u201d This study runs its "
+                   "three algorithms at their fixed values, and each one's d_lost, in the "
+                   "meandering wind of Farrell et al. (2002), from laminar (gain 0) to strong "
+                   "meander. How the wind and the presets are defined: ",
+                   _doc_link(out, "docs/model.md"), "; the study: ",
+                   _doc_link(out, "docs/meander.md"), "."])]
+    return write_pages(out, title, intro, sections)
+
+
+def main(argv: Optional[list] = None) -> int:
+    args = sys.argv[1:] if argv is None else argv
+    if len(args) != 1:
+        print("usage: python -m plumetrace.studies.meander OUT_DIR", file=sys.stderr)
+        return 2
+    try:
+        for p in build_report(args[0]):
+            print(f"wrote {p}")
+    except MeanderReportError as e:
+        print(f"plumetrace.studies.meander: error: {e}", file=sys.stderr)
+        return 2
+    return 0

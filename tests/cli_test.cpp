@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -234,6 +236,54 @@ TEST(Cli, HumanOutputNamesTheOutcome) {
   const Output o = cli("run --algorithm surge-spiral --set supervisor.timeout=2");
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("outcome   timeout"), std::string::npos) << o.out;
+}
+
+}  // namespace
+}  // namespace plumetrace
+
+namespace plumetrace {
+namespace {
+
+// a study folder of one small sweep: two algorithms, two runs each
+std::string tiny_study(const std::string& extra = "") {
+  const std::string dir = testing::temp_path("study", "");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/study.toml") << "name = \"tiny\"\ntitle = \"A tiny study\"\n"
+                                        "sets = [\"a.toml\"]\n"
+                                     << extra;
+  std::ofstream(dir + "/a.toml") << "name = \"a\"\ntitle = \"algorithms\"\nruns = 2\nseed = 7\n"
+                                    "[[axis]]\nkey = \"controller.algorithm\"\n"
+                                    "values = [\"casting\", \"surge-cast\"]\n";
+  return dir;
+}
+
+TEST(Study, RunsItsSweepsExportsThemAndResumes) {
+  const std::string dir = tiny_study();
+  const std::string out = dir + "/out";
+  const Output first = cli("study " + dir + " --out " + out + " --quiet --threads 2");
+  ASSERT_EQ(first.code, 0) << first.err;
+  EXPECT_NE(first.out.find("tiny: 4 runs (4 computed now"), std::string::npos) << first.out;
+  const auto results = nlohmann::json::parse(testing::read_file(out + "/results.json"));
+  ASSERT_EQ(results["sweeps"].size(), 1u);
+  EXPECT_EQ(results["sweeps"][0]["points"].size(), 2u);
+  const std::string runs = testing::read_file(out + "/runs.csv");
+  EXPECT_EQ(std::count(runs.begin(), runs.end(), '\n'), 5);  // header and 4 runs
+  // the same study again computes nothing and writes the same runs
+  const Output again = cli("study " + dir + " --out " + out + " --quiet");
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.out.find("(0 computed now"), std::string::npos) << again.out;
+  EXPECT_EQ(testing::read_file(out + "/runs.csv"), runs);
+}
+
+TEST(Study, ABadStudyFileNamesTheFileAndTheKeyAndExitsTwo) {
+  const std::string dir = tiny_study("colour = \"blue\"\n");
+  const Output bad = cli("study " + dir + " --out " + dir + "/out --quiet");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find(dir + "/study.toml: unknown key 'colour'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  const Output missing = cli("study " + dir + "/nowhere --quiet");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("nowhere/study.toml"), std::string::npos) << missing.err;
 }
 
 }  // namespace

@@ -415,7 +415,8 @@ def _trajectory_section(out_dir: Path, fig_dir: Path, summary: dict, written: li
                    "successful and the first failed run (by trial), re-run from their seed and "
                    "trial. Grey: fraction of sampled instants with odor (detection map). Red "
                    "disc: the source; dashed circle: the success radius. The trajectory is "
-                   "coloured by controller state; triangle: start, circle: end. Wind blows "
+                   "coloured by controller state; triangle: start, circle: end. Grey arrows: "
+                   "the true wind field at the run's release (0.5 m per m/s); the wind blows "
                    "along +x (left to right).",
                    "Sample trajectories of the three algorithms, successful and failed, over "
                    "the detection map")]

@@ -81,8 +81,21 @@ json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int
   for (const auto& r : point_runs(rows, sweep.def.name, p.index, runs)) {
     if ((r.outcome == Outcome::kSuccess) != success) continue;
     Trace trace;
+    // why: an interval beyond any run takes the one snapshot at release, for its wind field
+    const double once = 2.0 * kMaxSteps * p.scenario.sim.dt;
     const RunResult again =
-        run_once(p.scenario, r.seed, r.trial, TraceRecorder(trace, 0.0, p.scenario.sim.dt));
+        run_once(p.scenario, r.seed, r.trial, TraceRecorder(trace, once, p.scenario.sim.dt));
+    json wind = nullptr;
+    if (!trace.snapshots.empty() && !trace.snapshots[0].wind_x.empty()) {
+      const WindGrid& g = trace.wind_grid;
+      json u = json::array(), v = json::array();
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        u.push_back(std::round(trace.snapshots[0].wind_x[k] * 1e3) / 1e3);
+        v.push_back(std::round(trace.snapshots[0].wind_y[k] * 1e3) / 1e3);
+      }
+      wind = {{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
+              {"dy", g.dy}, {"ny", g.ny}, {"u", u},     {"v", v}};
+    }
     json x = json::array(), y = json::array(), state = json::array(), odor = json::array();
     const Vec3& c = p.scenario.source.center;
     double closest = INFINITY;
@@ -108,7 +121,8 @@ json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int
             {"outcome", std::string(outcome_name(again.outcome))},
             {"overhead", number_or_null(again.overhead)},
             {"time_s", again.time},
-            {"closest_m", number_or_null(closest)}};
+            {"closest_m", number_or_null(closest)},
+            {"wind_field", wind}};
   }
   return nullptr;
 }

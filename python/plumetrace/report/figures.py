@@ -232,6 +232,8 @@ def trajectory_figure(summary: dict, panels: list, path: Path) -> Path:
             if success_radius is not None:
                 ax.add_patch(Circle((sx, sy), success_radius, fill=False, edgecolor="#b2182b",
                                     linestyle="--", linewidth=1.0, zorder=3))
+        if traj is not None and traj.get("wind_field"):
+            _draw_wind_field(ax, traj["wind_field"])
         if traj is not None and len(traj["x"]) > 0:
             _draw_trajectory(ax, traj)
             bits = [f"set {traj['set']}" if traj.get("set") else None,
@@ -262,6 +264,21 @@ def trajectory_figure(summary: dict, panels: list, path: Path) -> Path:
         cbar.set_label("fraction of instants with odor", fontsize=8)
         cbar.ax.tick_params(labelsize=7)
     return _save(fig, path)
+
+
+def _draw_wind_field(ax, w: dict) -> None:
+    """The true wind at release on the trace's grid, light arrows under the trajectory."""
+    nx, ny = int(w["nx"]), int(w["ny"])
+    if nx * ny == 0 or len(w["u"]) != nx * ny:
+        return
+    xs = float(w["x0"]) + float(w["dx"]) * np.arange(nx)
+    ys = float(w["y0"]) + float(w["dy"]) * np.arange(ny)
+    gx, gy = np.meshgrid(xs, ys)
+    u = np.asarray(w["u"], float).reshape(ny, nx)
+    v = np.asarray(w["v"], float).reshape(ny, nx)
+    # why: 0.5 m of arrow per m/s, as in the viewer's scale of the arena
+    ax.quiver(gx, gy, u, v, angles="xy", scale_units="xy", scale=2.0, color="#9a9a9a",
+              width=0.0015, headwidth=4, zorder=1)
 
 
 def _draw_trajectory(ax, traj: dict) -> None:

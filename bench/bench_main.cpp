@@ -27,7 +27,7 @@ FilamentPlume warm_plume(const Scenario& s, const WindField& wind) {
 
 void BM_PlumeStep(benchmark::State& state) {
   const Scenario s;
-  const auto wind = make_wind_field(s.wind, Rng(derive_seed(1, 0, Stream::kWind)));
+  const auto wind = make_wind_field(s.wind, wind_region(s.arena), Rng(derive_seed(1, 0, Stream::kWind)));
   FilamentPlume plume = warm_plume(s, *wind);
   for (auto _ : state) plume.step(*wind, s.sim.dt);
   // reported per filament-step
@@ -44,7 +44,7 @@ BENCHMARK(BM_PlumeStep);
 template <class Query>
 void bench_query(benchmark::State& state, Query query) {
   const Scenario s;
-  const auto wind = make_wind_field(s.wind, Rng(derive_seed(1, 0, Stream::kWind)));
+  const auto wind = make_wind_field(s.wind, wind_region(s.arena), Rng(derive_seed(1, 0, Stream::kWind)));
   const FilamentPlume plume = warm_plume(s, *wind);
   const Vec3 points[] = {{15.5, 0.0, 0.0}, {8.0, 0.3, 0.0}, {2.0, -0.5, 0.0}, {8.0, 1.5, 0.0}};
   std::size_t i = 0;

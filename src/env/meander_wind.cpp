@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+
+#include "wind_loops.hpp"
 
 namespace plumetrace {
 
@@ -28,8 +31,24 @@ Response response(double mu, double q, double s) {
   const double w = std::sqrt(q);
   const double a = std::exp((mu + w) * s), b = std::exp((mu - w) * s);
   // why: the difference of the two exponentials cancels for small w s, sinh does not
-  const double sinh_part = w * s < 1.0 ? std::exp(mu * s) * std::sinh(w * s) / w : 0.5 * (a - b) / w;
+  const double sinh_part =
+      w * s < 1.0 ? std::exp(mu * s) * std::sinh(w * s) / w : 0.5 * (a - b) / w;
   return {0.5 * (a + b), sinh_part};
+}
+
+// the grid's cells as the interpolation reads them
+wind_loops::CellView cells_of(const WindRegion& r, double inv_dx, double inv_dy, int nx, int ny,
+                              const std::vector<double>& coef) {
+  return {r.x_min,
+          r.y_min,
+          inv_dx,
+          inv_dy,
+          static_cast<double>(nx - 1),
+          static_cast<double>(ny - 1),
+          nx - 1,
+          nx - 2,
+          ny - 2,
+          coef.data()};
 }
 
 double mu_of(const ColouredNoiseParams& p) { return -p.damping * p.bandwidth; }
@@ -40,28 +59,8 @@ double q_of(const ColouredNoiseParams& p) {
 // 8-point Gauss-Legendre nodes and weights on [-1, 1] (positive half; symmetric)
 constexpr double kGaussNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
                                    0.9602898564975363};
-constexpr double kGaussWeights[4] = {0.3626837833783620, 0.3137066458778873,
-                                     0.2223810344533745, 0.1012285362903763};
-
-// where coordinate p falls on n nodes from `origin` at 1 / spacing `inv`: the cell (k, k + 1) and
-// the fraction t in [0, 1] along it; beyond the grid, its edge node
-inline void locate(double p, double origin, double inv, int n, int& k, double& t) {
-  const double top = static_cast<double>(n - 1);
-  double f = (p - origin) * inv;
-  f = f > 0.0 ? f : 0.0;
-  f = f < top ? f : top;
-  const int c = std::min(static_cast<int>(f), n - 2);
-  k = c;
-  t = f - static_cast<double>(c);
-}
-
-// bilinear interpolation in the cell whose lower-left node is g[k]; a + t (b - a), which gives
-// exactly a constant field's value
-inline double bilinear(const double* g, std::size_t k, std::size_t nx, double tx, double ty) {
-  const double lo = g[k] + tx * (g[k + 1] - g[k]);
-  const double hi = g[k + nx] + tx * (g[k + nx + 1] - g[k + nx]);
-  return lo + ty * (hi - lo);
-}
+constexpr double kGaussWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                     0.1012285362903763};
 
 }  // namespace
 
@@ -146,8 +145,6 @@ MeanderWind::MeanderWind(const WindParams& params, const WindRegion& region, Rng
       rng_(rng),
       nx_(params.meander.nx),
       ny_(params.meander.ny),
-      dx_((region.x_max - region.x_min) / (nx_ - 1)),
-      dy_((region.y_max - region.y_min) / (ny_ - 1)),
       inv_dx_((nx_ - 1) / (region.x_max - region.x_min)),
       inv_dy_((ny_ - 1) / (region.y_max - region.y_min)),
       uniform_(params.meander.gain == 0.0),
@@ -175,6 +172,8 @@ MeanderWind::MeanderWind(const WindParams& params, const WindRegion& region, Rng
   set_edges();
   u2_ = u_;
   v2_ = v_;
+  coef_.assign(8 * static_cast<std::size_t>(nx_ - 1) * static_cast<std::size_t>(ny_ - 1), 0.0);
+  refresh_cells();
 }
 
 void MeanderWind::set_edges() {
@@ -201,8 +200,8 @@ void MeanderWind::set_edges() {
   }
 }
 
-double MeanderWind::max_substep(const MeanderParams& params, const WindRegion& region,
-                                double u_max, double v_max) {
+double MeanderWind::max_substep(const MeanderParams& params, const WindRegion& region, double u_max,
+                                double v_max) {
   const double dx = (region.x_max - region.x_min) / (params.nx - 1);
   const double dy = (region.y_max - region.y_min) / (params.ny - 1);
   const double diff_x = 0.5 * params.kx, diff_y = 0.5 * params.ky;
@@ -221,20 +220,24 @@ void MeanderWind::step(double dt) {
   set_edges();
   if (nx_ < 3 || ny_ < 3) {
     substeps_ = 0;
+    refresh_cells();
     return;
   }
   // the inside: as many equal substeps as the fastest node needs for stability
   double u_max = 0.0, v_max = 0.0;
   for (std::size_t k = 0; k < u_.size(); ++k) {
-    u_max = std::fmax(u_max, std::abs(u_[k]));
-    v_max = std::fmax(v_max, std::abs(v_[k]));
+    // why: a comparison, not std::fmax (a call); NaN speeds are skipped
+    const double a = std::abs(u_[k]), b = std::abs(v_[k]);
+    u_max = a > u_max ? a : u_max;
+    v_max = b > v_max ? b : v_max;
   }
-  // why: a field gone non-finite still takes a bounded number of substeps
-  const double n = std::clamp(std::ceil(dt / max_substep(params_, region_, u_max, v_max)), 1.0,
-                              1e6);
-  substeps_ = std::isnan(n) ? 1 : static_cast<int>(n);
+  // why: a field gone infinite (which stays so) takes a bounded number of substeps, not 1 / 0;
+  // validate() keeps a scenario's field within kMaxWindSubsteps at 4 standard deviations
+  const double n = std::ceil(dt / max_substep(params_, region_, u_max, v_max));
+  substeps_ = n >= 1.0 ? static_cast<int>(std::min(n, 1e4)) : 1;
   const double h = dt / substeps_;
   for (int s = 0; s < substeps_; ++s) update_inside(h);
+  refresh_cells();
 }
 
 void MeanderWind::update_inside(double h) {
@@ -251,12 +254,14 @@ void MeanderWind::update_inside(double h) {
       const double uc = u[k], vc = v[k];
       // why: (e - 2 c) + w and the differences are exactly 0 for a constant field, so zero gain
       // keeps the mean wind bit for bit
-      const double u_diff = ax * (u[k + 1] - 2.0 * uc + u[k - 1]) +
-                            ay * (u[k + row] - 2.0 * uc + u[k - row]);
-      const double v_diff = ax * (v[k + 1] - 2.0 * vc + v[k - 1]) +
-                            ay * (v[k + row] - 2.0 * vc + v[k - row]);
-      const double u_adv = uc * ((u[k + 1] - u[k - 1]) * cx) + vc * ((u[k + row] - u[k - row]) * cy);
-      const double v_adv = uc * ((v[k + 1] - v[k - 1]) * cx) + vc * ((v[k + row] - v[k - row]) * cy);
+      const double u_diff =
+          ax * (u[k + 1] - 2.0 * uc + u[k - 1]) + ay * (u[k + row] - 2.0 * uc + u[k - row]);
+      const double v_diff =
+          ax * (v[k + 1] - 2.0 * vc + v[k - 1]) + ay * (v[k + row] - 2.0 * vc + v[k - row]);
+      const double u_adv =
+          uc * ((u[k + 1] - u[k - 1]) * cx) + vc * ((u[k + row] - u[k - row]) * cy);
+      const double v_adv =
+          uc * ((v[k + 1] - v[k - 1]) * cx) + vc * ((v[k + row] - v[k - row]) * cy);
       u2_[k] = uc + h * (u_diff - u_adv);
       v2_[k] = vc + h * (v_diff - v_adv);
     }
@@ -272,32 +277,39 @@ void MeanderWind::update_inside(double h) {
   }
 }
 
+void MeanderWind::refresh_cells() {
+  const int cells_x = nx_ - 1;
+  for (int j = 0; j + 1 < ny_; ++j) {
+    for (int i = 0; i + 1 < nx_; ++i) {
+      double* c = coef_.data() + 8 * static_cast<std::size_t>(i + cells_x * j);
+      for (const std::vector<double>* g : {&u_, &v_}) {
+        const double g00 = (*g)[index(i, j)], g10 = (*g)[index(i + 1, j)];
+        const double g01 = (*g)[index(i, j + 1)], g11 = (*g)[index(i + 1, j + 1)];
+        c[0] = g00;
+        c[1] = g10 - g00;
+        c[2] = g01 - g00;
+        c[3] = (g11 - g01) - (g10 - g00);
+        c += 4;
+      }
+    }
+  }
+}
+
 Vec3 MeanderWind::velocity(const Vec3& p) const {
-  int i, j;
-  double tx, ty;
-  locate(p.x, region_.x_min, inv_dx_, nx_, i, tx);
-  locate(p.y, region_.y_min, inv_dy_, ny_, j, ty);
-  const std::size_t k = index(i, j), row = static_cast<std::size_t>(nx_);
-  return {bilinear(u_.data(), k, row, tx, ty), bilinear(v_.data(), k, row, tx, ty), mean_.z};
+  const wind_loops::CellView g = cells_of(region_, inv_dx_, inv_dy_, nx_, ny_, coef_);
+  int k;
+  double tx, ty, u, v;
+  wind_loops::locate(g, p.x, p.y, k, tx, ty);
+  wind_loops::evaluate(wind_loops::cell_coef(g, k), tx, ty, u, v);
+  return {u, v, mean_.z};
 }
 
 void MeanderWind::advect(std::span<double> x, std::span<double> y, std::span<double> z,
                          double dt) const {
-  const std::size_t row = static_cast<std::size_t>(nx_);
-  const double* u = u_.data();
-  const double* v = v_.data();
-  const double dz = mean_.z * dt;
-  for (std::size_t n = 0; n < x.size(); ++n) {
-    int i, j;
-    double tx, ty;
-    locate(x[n], region_.x_min, inv_dx_, nx_, i, tx);
-    locate(y[n], region_.y_min, inv_dy_, ny_, j, ty);
-    const std::size_t k = index(i, j);
-    // velocity(p) * dt, the same operations in the same order
-    x[n] += bilinear(u, k, row, tx, ty) * dt;
-    y[n] += bilinear(v, k, row, tx, ty) * dt;
-    z[n] += dz;
-  }
+  // velocity(p) * dt at every point, to the bit (wind_loops.hpp)
+  wind_loops::advect(wind_loops::fastest_path(),
+                     cells_of(region_, inv_dx_, inv_dy_, nx_, ny_, coef_), x.data(), y.data(),
+                     z.data(), 0, static_cast<std::int64_t>(x.size()), dt, mean_.z * dt);
 }
 
 }  // namespace plumetrace

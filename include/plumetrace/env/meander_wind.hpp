@@ -90,17 +90,18 @@ class MeanderWind final : public WindField {
 
  private:
   std::size_t index(int i, int j) const {
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(nx_) * static_cast<std::size_t>(j);
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(nx_) * static_cast<std::size_t>(j);
   }
   void set_edges();
   void update_inside(double h);
+  void refresh_cells();
 
   MeanderParams params_;
   WindRegion region_;
   Vec3 mean_;
   Rng rng_;
   int nx_, ny_;
-  double dx_, dy_;          // node spacing (m)
   double inv_dx_, inv_dy_;  // 1 / spacing (1/m)
   bool uniform_;
   ColouredNoiseParams noise_params_;
@@ -112,6 +113,8 @@ class MeanderWind final : public WindField {
   int substeps_ = 0;
   std::vector<double> u_, v_;    // node values, x fastest
   std::vector<double> u2_, v2_;  // the next substep's values
+  // each cell's bilinear coefficients (src/env/wind_loops.hpp)
+  std::vector<double> coef_;
 };
 
 }  // namespace plumetrace

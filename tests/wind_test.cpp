@@ -243,7 +243,7 @@ TEST(MeanderWind, CornersHaveTheNoisesVarianceAndCorrelationWithin4Sigma) {
 // The time mean of the grid is the mean wind: u and v averaged over the inside nodes and at the
 // robot's start, 48 independent series of 1000 s each, in the default (large-amplitude) meander.
 // (The standard error of one series' mean is about G / sqrt(T) per corner, the noise's spectrum
-// at zero frequency: 0.08 / sqrt(1000 s) = 2.5 mm/s.)
+// at zero frequency: 0.14 / sqrt(1000 s) = 4.4 mm/s.)
 TEST(MeanderWind, TheGridsTimeMeanIsTheMeanWindWithin4Sigma) {
   Scenario s = meander_scenario();
   s.wind.velocity = {0.9, 0.05, 0.0};

@@ -22,9 +22,9 @@ Choices wind_model_names();
 /// section 3.1). Defaults: the `meander-strong` scenario (scenarios/meander-strong.toml).
 struct MeanderParams {
   /// Gain G of the boundary noise filter (m/s^0.5); 0: the constant wind, bit for bit. why:
-  /// chosen for a stated meander amplitude at the robot's start (docs/model.md section 3.1);
-  /// Farrell's G = 20 is of a time-step-dependent update and does not carry over.
-  double gain = 0.08;
+  /// 0.14 gives the centreline a 0.6 m standard deviation at the robot's start (docs/model.md
+  /// section 3.1); Farrell's G = 20 is of a time-step-dependent update and does not carry over.
+  double gain = 0.14;
   /// Damping ratio zeta of the filter. why: Farrell et al.'s large-amplitude meander, 0.1.
   double damping = 0.1;
   /// Bandwidth omega (undamped natural frequency) of the filter (rad/s). why: Farrell et al.'s
@@ -60,7 +60,7 @@ struct WindParams {
     v("vy", velocity.y, "constant (or mean) wind velocity, y component (m/s)", kAnyNumber);
     v("vz", velocity.z, "constant (or mean) wind velocity, z component (m/s)", kAnyNumber);
     v("meander_gain", meander.gain,
-      "meander: gain G of the boundary noise (m/s^0.5), in [0, 10]; 0: the constant wind",
+      "meander: gain G of the boundary noise (m/s^0.5); 0: the constant wind",
       NumberSpec{.min = 0.0, .max = 10.0});
     v("meander_damping", meander.damping, "meander: damping ratio zeta of the boundary noise",
       NumberSpec{.min = 0.0, .max = 10.0, .min_open = true});

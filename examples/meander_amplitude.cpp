@@ -107,10 +107,13 @@ int main(int argc, char** argv) {
     const double mean = mean_of(centroids), sd = sd_of(centroids, mean);
     const double spread = sd_of(trial_sd, mean_of(trial_sd));
     std::sort(counts.begin(), counts.end());
-    std::printf("scenario %s: wind.model %s, gain %g, damping %g, bandwidth %g\n",
-                o.scenario.c_str(),
-                s.wind.model == pt::WindModel::kMeander ? "meander" : "constant",
-                s.wind.meander.gain, s.wind.meander.damping, s.wind.meander.bandwidth);
+    if (s.wind.model == pt::WindModel::kMeander) {
+      std::printf("scenario %s: meandering wind, gain %g, damping %g, bandwidth %g\n",
+                  o.scenario.c_str(), s.wind.meander.gain, s.wind.meander.damping,
+                  s.wind.meander.bandwidth);
+    } else {
+      std::printf("scenario %s: constant wind\n", o.scenario.c_str());
+    }
     std::printf("slab x = %.3f +- %.3f m (source + %.2f m), %d trials x %.0f s, every %.3f s\n", x0,
                 o.half_width, o.distance, o.trials, o.duration, static_cast<double>(every) * dt);
     std::printf("instants with filaments in the slab: %zu of %ld (%.1f%%), median %g filaments\n",

@@ -7,6 +7,7 @@
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
@@ -18,16 +19,34 @@
 namespace plumetrace {
 namespace {
 
-// a default plume after its 20 s warm-up: 1600 filaments
-FilamentPlume warm_plume(const Scenario& s, const WindField& wind) {
+// the scenario's wind field, as a run of seed 1, trial 0 makes it
+std::unique_ptr<WindField> make_wind(const Scenario& s) {
+  return make_wind_field(s.wind, wind_region(s.arena), Rng(derive_seed(1, 0, Stream::kWind)));
+}
+
+// the default scenario, in the laminar wind (range 0) or the default meandering wind (1)
+Scenario bench_scenario(std::int64_t meander) {
+  Scenario s;
+  if (meander != 0) s.wind.model = WindModel::kMeander;
+  return s;
+}
+
+// a default plume after its 20 s warm-up: 1600 filaments (the wind is stepped with it)
+FilamentPlume warm_plume(const Scenario& s, WindField& wind) {
   FilamentPlume plume(s.plume, s.source, s.arena.x_max, derive_seed(1, 0, Stream::kPlume));
-  for (int i = 0; i < 625; ++i) plume.step(wind, s.sim.dt);
+  for (int i = 0; i < 625; ++i) {
+    wind.step(s.sim.dt);
+    plume.step(wind, s.sim.dt);
+  }
   return plume;
 }
 
+// one plume step in a wind held still: range 0 laminar (one velocity per step), 1 the default
+// meander (the velocity at each filament)
 void BM_PlumeStep(benchmark::State& state) {
-  const Scenario s;
-  const auto wind = make_wind_field(s.wind, Rng(derive_seed(1, 0, Stream::kWind)));
+  const Scenario s = bench_scenario(state.range(0));
+  state.SetLabel(state.range(0) != 0 ? "meander" : "laminar");
+  const auto wind = make_wind(s);
   FilamentPlume plume = warm_plume(s, *wind);
   for (auto _ : state) plume.step(*wind, s.sim.dt);
   // reported per filament-step
@@ -37,14 +56,24 @@ void BM_PlumeStep(benchmark::State& state) {
       static_cast<double>(state.iterations()) * static_cast<double>(plume.size()),
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_PlumeStep);
+BENCHMARK(BM_PlumeStep)->Arg(0)->Arg(1);
+
+// one step of the default meandering wind (17 x 5 nodes, dt 0.032 s): the corner noise, the
+// edges and the inside's substeps
+void BM_MeanderWindStep(benchmark::State& state) {
+  const Scenario s = bench_scenario(1);
+  MeanderWind wind(s.wind, wind_region(s.arena), Rng(derive_seed(1, 0, Stream::kWind)));
+  for (auto _ : state) wind.step(s.sim.dt);
+  state.counters["substeps"] = wind.substeps();
+}
+BENCHMARK(BM_MeanderWindStep);
 
 // a query at points along and across the corridor of the warm default plume, as a robot meets
 // them
 template <class Query>
 void bench_query(benchmark::State& state, Query query) {
   const Scenario s;
-  const auto wind = make_wind_field(s.wind, Rng(derive_seed(1, 0, Stream::kWind)));
+  const auto wind = make_wind(s);
   const FilamentPlume plume = warm_plume(s, *wind);
   const Vec3 points[] = {{15.5, 0.0, 0.0}, {8.0, 0.3, 0.0}, {2.0, -0.5, 0.0}, {8.0, 1.5, 0.0}};
   std::size_t i = 0;
@@ -66,10 +95,12 @@ void BM_OdorQuery(benchmark::State& state) {
 }
 BENCHMARK(BM_OdorQuery);
 
+// one run per algorithm (range 0) in the laminar wind or the default meander (range 1)
 void BM_WholeRun(benchmark::State& state) {
-  Scenario s;
+  Scenario s = bench_scenario(state.range(1));
   s.controller.algorithm = all_algorithms()[static_cast<std::size_t>(state.range(0))];
-  state.SetLabel(std::string(algorithm_name(s.controller.algorithm)));
+  state.SetLabel(std::string(algorithm_name(s.controller.algorithm)) +
+                 (state.range(1) != 0 ? " meander" : ""));
   std::uint64_t trial = 0;
   std::int64_t steps = 0;
   for (auto _ : state) {
@@ -77,8 +108,13 @@ void BM_WholeRun(benchmark::State& state) {
   }
   state.counters["steps_per_run"] =
       static_cast<double>(steps) / static_cast<double>(state.iterations());
+  // the time per robot step, warm-up included (a run in meander may last longer or shorter)
+  state.counters["per_step"] =
+      benchmark::Counter(static_cast<double>(steps + static_cast<std::int64_t>(state.iterations()) *
+                                                         std::llround(s.sim.warmup / s.sim.dt)),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_WholeRun)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WholeRun)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 // rows as a sweep makes them: one point, consecutive trials from `first`
 std::vector<RunRow> sample_rows(std::size_t count, std::uint64_t first) {

@@ -38,6 +38,26 @@ TEST(Scenario, DefaultScenarioFileEqualsBuiltInDefaults) {
   EXPECT_EQ(scenario_to_toml(from_file), scenario_to_toml(Scenario{}));
 }
 
+TEST(Scenario, MeanderFilesAreTheDefaultsInTheMeanderingWind) {
+  for (const char* name : {"meander-weak.toml", "meander-strong.toml"}) {
+    Scenario s = load_scenario(kScenarios + name, {});
+    EXPECT_EQ(s.wind.model, WindModel::kMeander) << name;
+    EXPECT_GT(s.wind.meander.gain, 0.0) << name;
+    // the mean wind is the laminar default's, and nothing but the wind differs
+    EXPECT_EQ(s.wind.velocity.x, Scenario{}.wind.velocity.x) << name;
+    EXPECT_EQ(s.wind.velocity.y, 0.0) << name;
+    s.wind = Scenario{}.wind;
+    EXPECT_EQ(scenario_to_toml(s), scenario_to_toml(Scenario{})) << name;
+  }
+  // the strong meander is the keys' defaults
+  Scenario strong = load_scenario(kScenarios + "meander-strong.toml", {});
+  strong.wind.model = WindModel::kConstant;
+  EXPECT_EQ(scenario_to_toml(strong), scenario_to_toml(Scenario{}));
+  const Scenario weak = load_scenario(kScenarios + "meander-weak.toml", {});
+  EXPECT_EQ(weak.wind.meander.damping, 0.071);
+  EXPECT_EQ(weak.wind.meander.bandwidth, 0.71);
+}
+
 TEST(Scenario, PaperLiteralFileSetsEveryPresetRow) {
   const Scenario s = load_scenario(kScenarios + "paper-literal.toml", {});
   EXPECT_EQ(s.plume.preset, PlumePreset::kPaperLiteral);

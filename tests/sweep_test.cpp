@@ -278,6 +278,25 @@ TEST(Campaign, OneAndTwoThreadsGiveIdenticalRows) {
   expect_same_rows(run_fresh(sweeps, 1), run_fresh(sweeps, 2));
 }
 
+TEST(Campaign, OneAndTwoThreadsGiveIdenticalRowsInTheMeanderingWind) {
+  std::string text = kQuickSweep;
+  const std::string set = "[set]\n";
+  text.insert(text.find(set) + set.size(), "wind.model = \"meander\"\nwind.meander_gain = 0.3\n");
+  const std::vector<ExpandedSweep> sweeps = {expand_sweep(read_sweep_file(write_sweep(text)), {})};
+  ASSERT_EQ(sweeps[0].points[0].scenario.wind.model, WindModel::kMeander);
+  const auto one = run_fresh(sweeps, 1);
+  expect_same_rows(one, run_fresh(sweeps, 2));
+  expect_same_rows(one, run_fresh(sweeps, 2, false));  // and shared plumes equal separate ones
+  // the meander changed the runs
+  const auto laminar = run_fresh(quick(), 1);
+  ASSERT_EQ(laminar.size(), one.size());
+  bool differ = false;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    differ = differ || one[i].result.steps != laminar[i].result.steps;
+  }
+  EXPECT_TRUE(differ);
+}
+
 TEST(SharedPlume, AgentsOnOnePlumeEqualSeparateRunsBitForBit) {
   // robots as different as can be, on the paper's plume: algorithms, noise, radii, starts
   std::vector<Scenario> scenarios(6);
@@ -325,6 +344,17 @@ TEST(SharedPlume, ScenariosWithDifferentPlumesAreRefused) {
   EXPECT_EQ(plume_key(a), plume_key(b));  // robot-side keys do not change the plume
   b.plume.sigma_p = 0.2;
   EXPECT_THROW(run_shared({&a, &b}, 1, 0), std::invalid_argument);
+}
+
+TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
+  Scenario a, b;
+  b.arena.y_max = 3.0;  // the robot's wall; the constant wind's plume does not see it
+  EXPECT_EQ(plume_key(a), plume_key(b));
+  a.wind.model = b.wind.model = WindModel::kMeander;
+  EXPECT_NE(plume_key(a), plume_key(b));  // the wind's grid covers the arena
+  b = a;
+  b.wind.meander.gain = 0.2;
+  EXPECT_NE(plume_key(a), plume_key(b));
 }
 
 TEST(Campaign, SharedAndSeparatePlumesGiveIdenticalRows) {

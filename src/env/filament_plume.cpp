@@ -239,12 +239,7 @@ void FilamentPlume::move(const WindField& wind, double dt) {
     const Vec3 a = wind.velocity(source_.center);
     drift = {a.x * dt, a.y * dt, a.z * dt};
   } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      const Vec3 a = wind.velocity({x_[i], y_[i], z_[i]});
-      x_[i] += a.x * dt;
-      y_[i] += a.y * dt;
-      z_[i] += a.z * dt;
-    }
+    wind.advect(x_, y_, z_, dt);
   }
   // random walk (second term) and width growth (eq. 3); the walk's normals come from a
   // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "plumetrace/env/filament_plume.hpp"
+#include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/env/odor.hpp"
 #include "plumetrace/env/wind.hpp"
 
@@ -14,6 +15,7 @@ WindRegistry& wind_field_registry() {
   static WindRegistry registry = [] {
     WindRegistry r;
     r.add<ConstantWind, WindParams>("constant");
+    r.add<MeanderWind, WindParams>("meander");
     return r;
   }();
   return registry;
@@ -30,10 +32,11 @@ OdorRegistry& odor_field_registry() {
 
 Choices wind_model_names() { return wind_field_registry().names(); }
 
-std::unique_ptr<WindField> make_wind_field(const WindParams& params, Rng rng) {
+std::unique_ptr<WindField> make_wind_field(const WindParams& params, const WindRegion& region,
+                                           Rng rng) {
   const WindRegistry& registry = wind_field_registry();
   const auto i = static_cast<std::size_t>(params.model);
-  return registry[i < registry.size() ? i : 0].make(AnyParams(params), rng);
+  return registry[i < registry.size() ? i : 0].make(AnyParams(params), region, rng);
 }
 
 std::unique_ptr<OdorField> make_odor_field(std::string_view name, const PlumeParams& params,

@@ -104,6 +104,10 @@ std::string plume_key(const Scenario& scenario) {
   p.wind = scenario.wind;
   p.plume = scenario.plume;
   p.arena.x_max = scenario.arena.x_max;
+  if (scenario.wind.model != WindModel::kConstant) {
+    // a wind field other than the constant one covers the whole arena (its grid)
+    p.arena = scenario.arena;
+  }
   return hash_text(scenario_to_toml(p));
 }
 

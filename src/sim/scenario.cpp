@@ -8,6 +8,8 @@
 #include <optional>
 #include <sstream>
 
+#include "plumetrace/env/meander_wind.hpp"
+
 namespace plumetrace {
 
 namespace {
@@ -361,6 +363,25 @@ void validate(const Scenario& scenario) {
   };
   steps("sim.warmup", scenario.sim.warmup);
   steps("supervisor.timeout", scenario.supervisor.timeout);
+  if (scenario.wind.model == WindModel::kMeander) {
+    // why: the grid's substeps grow as K / spacing^2 and speed^2 (docs/model.md section 3.1);
+    // counted at the mean wind plus 4 standard deviations of the boundary noise
+    const MeanderParams& m = scenario.wind.meander;
+    const double spread =
+        4.0 * std::sqrt(coloured_noise_variance({m.gain, m.damping, m.bandwidth}));
+    const Vec3& mean = scenario.wind.velocity;
+    const double substeps =
+        std::ceil(dt / MeanderWind::max_substep(m, wind_region(a), std::abs(mean.x) + spread,
+                                                std::abs(mean.y) + spread));
+    if (!(substeps <= kMaxWindSubsteps)) {
+      throw ConfigError(
+          "wind.meander_kx, wind.meander_ky, wind.meander_nx, wind.meander_ny, "
+          "wind.meander_gain: the meandering wind's grid would need " +
+          bound_text(substeps) + " substeps per step of sim.dt to stay stable (at most " +
+          bound_text(kMaxWindSubsteps) +
+          "): lower the diffusivities, the node counts, the gain or sim.dt");
+    }
+  }
   const double per_step = scenario.plume.release_rate * dt;
   if (per_step > kMaxReleasePerStep) {
     throw ConfigError("plume.release_rate: must release at most " + bound_text(kMaxReleasePerStep) +

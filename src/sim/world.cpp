@@ -99,7 +99,8 @@ RunResult Agent::result() const {
 
 Environment make_environment(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
   Environment env;
-  env.wind = make_wind_field(scenario.wind, Rng(derive_seed(seed, trial, Stream::kWind)));
+  env.wind = make_wind_field(scenario.wind, wind_region(scenario.arena),
+                             Rng(derive_seed(seed, trial, Stream::kWind)));
   env.odor = make_odor_field("filament", scenario.plume, scenario.source, scenario.arena.x_max,
                              derive_seed(seed, trial, Stream::kPlume));
   return env;

@@ -196,6 +196,10 @@ Vec3 recorded_true_wind(const WindParams& wind) {
   switch (wind.model) {
     case WindModel::kConstant:
       return wind.velocity;
+    case WindModel::kMeander:
+      // why: the trace does not record the meandering field yet (issue 15, the viewer's part):
+      // its mean is drawn, which the local wind departs from by the meander
+      return wind.velocity;
   }
   return {NAN, NAN, NAN};
 }

@@ -54,6 +54,11 @@ struct ArenaParams {
   }
 };
 
+/// The region the wind field covers: the arena's walls.
+inline WindRegion wind_region(const ArenaParams& arena) {
+  return {arena.x_min, arena.x_max, arena.y_min, arena.y_max};
+}
+
 /// When a run ends (docs/model.md section 8).
 struct SupervisorParams {
   /// Success once the robot centre is this close to the source centre in (x, y) (m).
@@ -100,6 +105,10 @@ inline constexpr double kMaxSteps = 1e7;
 /// converted to an integer and released one by one; a large sim.dt must not make it huge (the
 /// conversion is undefined from 2^64).
 inline constexpr double kMaxReleasePerStep = 1e6;
+
+/// The most substeps the meandering wind's grid may need per step of sim.dt: 1000. why: its cost
+/// grows with K / spacing^2 and the wind speed squared; beyond this a run would crawl.
+inline constexpr double kMaxWindSubsteps = 1000.0;
 
 /// Every config key of a scenario bound to its place, in file order (Scenario::fields).
 std::vector<Field> scenario_fields(Scenario& scenario);

@@ -1,0 +1,120 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/rng.hpp"
+#include "plumetrace/env/wind.hpp"
+
+namespace plumetrace {
+
+/// A second-order filter driven by white noise (Farrell et al. 2002; docs/model.md section 3.1):
+/// x'' + 2 zeta omega x' + omega^2 x = G omega^2 xi(t), xi unit white noise.
+struct ColouredNoiseParams {
+  double gain;       ///< G (m/s^0.5)
+  double damping;    ///< zeta, > 0
+  double bandwidth;  ///< omega (rad/s), > 0
+};
+
+/// The filter's state: its output x (m/s) and its rate x' (m/s^2).
+struct ColouredNoiseState {
+  double value = 0.0;  ///< x (m/s)
+  double rate = 0.0;   ///< x' (m/s^2)
+};
+
+/// The exact discrete step of the filter over one dt: state <- phi * state + L * (n1, n2), with
+/// n1, n2 independent standard normals and L L^T the covariance the noise adds in dt.
+struct ColouredNoiseTransition {
+  double phi[2][2];  ///< exp(A dt)
+  double l11;        ///< Cholesky factor of the added covariance: (0, 0)
+  double l21;        ///< (1, 0)
+  double l22;        ///< (1, 1)
+};
+
+/// Stationary variance of the output x: G^2 omega / (4 zeta) ((m/s)^2).
+double coloured_noise_variance(const ColouredNoiseParams& params);
+/// Stationary variance of the rate x': G^2 omega^3 / (4 zeta) ((m/s^2)^2).
+double coloured_noise_rate_variance(const ColouredNoiseParams& params);
+/// Autocorrelation of the stationary output at a lag (s): phi_11(lag).
+double coloured_noise_correlation(const ColouredNoiseParams& params, double lag);
+/// Integral time scale of the output, the integral of its autocorrelation over lags >= 0 (s):
+/// 2 zeta / omega.
+double coloured_noise_time_scale(const ColouredNoiseParams& params);
+/// The exact step over dt (s) (docs/model.md section 3.1: phi in closed form, the added
+/// covariance by Gauss-Legendre quadrature of its defining integral).
+ColouredNoiseTransition coloured_noise_transition(const ColouredNoiseParams& params, double dt);
+/// A state drawn from the stationary law (two normals: value, then rate).
+ColouredNoiseState stationary_coloured_noise(const ColouredNoiseParams& params, Rng& rng);
+/// Advances the state by one step of `transition` (two normals).
+void step(const ColouredNoiseTransition& transition, ColouredNoiseState& state, Rng& rng);
+
+/// Farrell et al.'s (2002) meandering wind over the arena: the mean wind plus a perturbation on a
+/// grid of nx by ny nodes spanning the region, walls included (docs/model.md section 3.1). On
+/// the grid's edges (u, v) follow the mean plus coloured noise at the four corners, linear along
+/// each edge; inside, Farrell's advection-diffusion update; between nodes, bilinear
+/// interpolation (clamped to the grid outside it). The vertical wind is the mean's vz.
+class MeanderWind final : public WindField {
+ public:
+  /// Builds the field over `region`, drawing the noise's first state from the stationary law;
+  /// the inside starts as the bilinear interpolation of the four corners.
+  MeanderWind(const WindParams& params, const WindRegion& region, Rng rng);
+
+  /// Advances the corner noise exactly, sets the edges, then updates the inside in
+  /// `substeps()` equal substeps of Farrell's scheme (forward Euler, centred differences).
+  void step(double dt) override;
+  /// Bilinear interpolation of the grid at p (x, y clamped to the region); z: the mean vz.
+  Vec3 velocity(const Vec3& p) const override;
+  /// True when the gain is 0: the field is then the mean wind, exactly, everywhere and always.
+  bool uniform_in_space() const override { return uniform_; }
+  /// velocity() at every point, in one loop.
+  void advect(std::span<double> x, std::span<double> y, std::span<double> z,
+              double dt) const override;
+
+  /// Nodes along x.
+  int nx() const { return nx_; }
+  /// Nodes along y.
+  int ny() const { return ny_; }
+  /// The x component at node (i, j), at x_min + i dx, y_min + j dy (m/s).
+  double u(int i, int j) const { return u_[index(i, j)]; }
+  /// The y component at node (i, j) (m/s).
+  double v(int i, int j) const { return v_[index(i, j)]; }
+  /// Substeps the last step took.
+  int substeps() const { return substeps_; }
+
+  /// The longest substep (s) for which the inside update is stable at speeds up to |u| <= u_max
+  /// and |v| <= v_max (m/s), by the von Neumann bound of docs/model.md section 3.1.
+  static double max_substep(const MeanderParams& params, const WindRegion& region, double u_max,
+                            double v_max);
+
+ private:
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(nx_) * static_cast<std::size_t>(j);
+  }
+  void set_edges();
+  void update_inside(double h);
+  void refresh_cells();
+
+  MeanderParams params_;
+  WindRegion region_;
+  Vec3 mean_;
+  Rng rng_;
+  int nx_, ny_;
+  double inv_dx_, inv_dy_;  // 1 / spacing (1/m)
+  bool uniform_;
+  ColouredNoiseParams noise_params_;
+  // the corner noise: u at corners 0-3, then v; corners (x_min, y_min), (x_max, y_min),
+  // (x_min, y_max), (x_max, y_max)
+  ColouredNoiseState noise_[8];
+  double transition_dt_ = -1.0;  // the dt `transition_` was made for
+  ColouredNoiseTransition transition_{};
+  int substeps_ = 0;
+  std::vector<double> u_, v_;    // node values, x fastest
+  std::vector<double> u2_, v2_;  // the next substep's values
+  // each cell's bilinear coefficients (src/env/wind_loops.hpp)
+  std::vector<double> coef_;
+};
+
+}  // namespace plumetrace

@@ -50,7 +50,7 @@ def test_the_title_names_the_algorithm_that_degrades_least_and_the_d_lost_effect
     md = (out / "report.md").read_text()
     assert [p.name for p in written] == ["report.html", "report.md"]
     assert "Beyond the paper: surge-cast degrades least" in md.splitlines()[0]
-    assert "a larger d_lost hurts in strong meander for 1 of 1 algorithms" in md.splitlines()[0]
+    assert "a larger d_lost hurts surge-cast in strong meander" in md.splitlines()[0]
     assert (out / "figures" / "meander_M.png").stat().st_size > 1000
     assert "figures/meander_L.png" in md
     assert html.count("<img") == 2

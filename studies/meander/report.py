@@ -29,6 +29,7 @@ class Curve:
 
     def __init__(self, label: str):
         self.label = label
+        self.failures: dict = {}  # outcome counts at the last point added (the strongest)
         self.x: list = []
         self.rate: list = []
         self.lo: list = []
@@ -45,6 +46,7 @@ class Curve:
         self.lo.append(stats["success_lo"])
         self.hi.append(stats["success_hi"])
         self.runs.append(stats["runs"])
+        self.failures = {k: stats.get(k, 0) for k in ("walls", "timeouts", "gave_up")}
         self.overhead.append(oh.get("mean"))
         self.oh_lo.append(oh.get("lo"))
         self.oh_hi.append(oh.get("hi"))
@@ -138,6 +140,23 @@ def d_lost_effect(lines: list) -> tuple:
     return verdict, text
 
 
+def failures_text(lines: list) -> str:
+    """How the runs at the strongest meander failed, per line, with what each outcome means."""
+    parts = []
+    for c in lines:
+        f = {k: v for k, v in c.failures.items() if v}
+        if f:
+            parts.append(f"{c.label}: " + ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in f.items()))
+    if not parts:
+        return "At the strongest meander no run failed."
+    text = "How runs failed at the strongest meander: " + "; ".join(parts) + "."
+    if any(c.failures.get("gave_up") for c in lines):
+        text += (" \u201cGave up\u201d is the algorithm's own rule ending the run: surge-cast "
+                 "stops when both of its casts find no odor (docs/model.md, section 7.4); in a "
+                 "meandering plume the odor has often moved sideways beyond the casts.")
+    return text
+
+
 def build_report(out_dir) -> list:
     out = Path(out_dir)
     path = out / "results.json"
@@ -166,19 +185,29 @@ def build_report(out_dir) -> list:
         if key == "controller.algorithm":
             algorithm_verdict, text = degradation(lines)
             blocks.insert(0, Para([f"{algorithm_verdict[0].upper()}{algorithm_verdict[1:]}: {text}"]))
+            blocks.insert(1, Para([failures_text(lines)]))
         elif key.endswith(".d_lost"):
             verdict, text = d_lost_effect(lines)
-            d_verdicts.append((sweep["title"], verdict))
+            d_verdicts.append((sweep["title"].split(":")[0], verdict))
             blocks.insert(0, Para([f"A larger d_lost {verdict} here: {text}"]))
+            blocks.insert(1, Para([failures_text(lines)]))
         sections.append(Section(anchor=f"sweep-{sweep['name']}",
                                 title=f"{sweep['name']}: {sweep['title']}", blocks=blocks))
     if algorithm_verdict:
         findings.append(algorithm_verdict)
     hurts = [t for t, v in d_verdicts if v == "hurts"]
+    helps = [t for t, v in d_verdicts if v == "helps"]
     if d_verdicts:
-        findings.append(f"a larger d_lost hurts in strong meander for {len(hurts)} of "
-                        f"{len(d_verdicts)} algorithms" if hurts else
-                        "no algorithm is clearly hurt by a larger d_lost in strong meander")
+        said = []
+        if hurts:
+            said.append(f"a larger d_lost hurts {' and '.join(hurts)} in strong meander")
+        if helps:
+            said.append(f"a larger d_lost helps {' and '.join(helps)}")
+        if not said:
+            said.append("no algorithm is clearly hurt by a larger d_lost in strong meander")
+        elif not hurts:
+            said.insert(0, "no algorithm is clearly hurt by a larger d_lost in strong meander")
+        findings.append(", ".join(said))
     title = "Beyond the paper: " + ("; ".join(findings) if findings else "meandering wind")
     intro = [Para(["The paper closes: \u201cIn future work, we will test the algorithms in "
                    "turbulent flow and/or meandering plume conditions.\u201d This study runs its "

@@ -286,5 +286,18 @@ TEST(Study, ABadStudyFileNamesTheFileAndTheKeyAndExitsTwo) {
   EXPECT_NE(missing.err.find("nowhere/study.toml"), std::string::npos) << missing.err;
 }
 
+TEST(Study, TheMeanderStudyRunsAndDrawsItsReport) {
+  const std::string out = testing::temp_path("meander", "");
+  const Output o = cli("study " + std::string(PLUMETRACE_SOURCE_DIR) +
+                       "/studies/meander --runs 2 --out " + out + " --quiet");
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("meander: 216 runs"), std::string::npos) << o.out;
+  const std::string md = testing::read_file(out + "/report.md");
+  EXPECT_EQ(md.rfind("# Beyond the paper: ", 0), 0u) << md.substr(0, 200);
+  for (const char* sweep : {"M", "Mc", "Ms", "Mg"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/figures/meander_" + sweep + ".png")) << sweep;
+  }
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -13,12 +13,20 @@ namespace plumetrace::cli {
 
 namespace {
 
-std::vector<Vec3> parse_points(const std::string& text) {
-  std::vector<Vec3> points;
+// the non-blank items of "a;b;..."
+std::vector<std::string> items(const std::string& text) {
+  std::vector<std::string> out;
   std::stringstream all(text);
   std::string item;
   while (std::getline(all, item, ';')) {
-    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    if (item.find_first_not_of(" \t") != std::string::npos) out.push_back(item);
+  }
+  return out;
+}
+
+std::vector<Vec3> parse_points(const std::string& text) {
+  std::vector<Vec3> points;
+  for (const auto& item : items(text)) {
     double v[3];
     char extra;
     if (std::sscanf(item.c_str(), " %lf , %lf , %lf %c", &v[0], &v[1], &v[2], &extra) != 3 ||
@@ -34,10 +42,7 @@ std::vector<Vec3> parse_points(const std::string& text) {
 // "x;x;..." as numbers; empty: none
 std::vector<double> parse_positions(const std::string& text) {
   std::vector<double> xs;
-  std::stringstream all(text);
-  std::string item;
-  while (std::getline(all, item, ';')) {
-    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+  for (const auto& item : items(text)) {
     double v;
     char extra;
     if (std::sscanf(item.c_str(), " %lf %c", &v, &extra) != 1 || !std::isfinite(v)) {

@@ -29,7 +29,7 @@ class Curve:
 
     def __init__(self, label: str):
         self.label = label
-        self.failures: dict = {}  # outcome counts at the last point added (the strongest)
+        self.failures: list = []  # per point: counts of walls, timeouts and gave_up
         self.x: list = []
         self.rate: list = []
         self.lo: list = []
@@ -46,7 +46,7 @@ class Curve:
         self.lo.append(stats["success_lo"])
         self.hi.append(stats["success_hi"])
         self.runs.append(stats["runs"])
-        self.failures = {k: stats.get(k, 0) for k in ("walls", "timeouts", "gave_up")}
+        self.failures.append({k: stats.get(k, 0) for k in ("walls", "timeouts", "gave_up")})
         self.overhead.append(oh.get("mean"))
         self.oh_lo.append(oh.get("lo"))
         self.oh_hi.append(oh.get("hi"))
@@ -66,7 +66,7 @@ def curves(sweep: dict) -> tuple:
         by_value.setdefault(str(value), Curve(str(value))).add(float(p["values"][s]), p["stats"])
     for c in by_value.values():
         order = sorted(range(len(c.x)), key=lambda i: c.x[i])
-        for name in ("x", "rate", "lo", "hi", "runs", "overhead", "oh_lo", "oh_hi"):
+        for name in ("x", "rate", "lo", "hi", "runs", "overhead", "oh_lo", "oh_hi", "failures"):
             setattr(c, name, [getattr(c, name)[i] for i in order])
     axis = sweep["axes"][o]
     return axis.get("label") or axis["key"], axis["key"], list(by_value.values())
@@ -140,17 +140,24 @@ def d_lost_effect(lines: list) -> tuple:
     return verdict, text
 
 
+def outcome_words(outcome: str, n: int) -> str:
+    """"walls", "timeouts", "gave_up" as words for n runs: 1 wall, 2 walls, 3 gave up."""
+    if outcome == "gave_up":
+        return "gave up"
+    return outcome if n != 1 else outcome[:-1]
+
+
 def failures_text(lines: list) -> str:
     """How the runs at the strongest meander failed, per line, with what each outcome means."""
     parts = []
     for c in lines:
-        f = {k: v for k, v in c.failures.items() if v}
+        f = {k: v for k, v in c.failures[-1].items() if v}
         if f:
-            parts.append(f"{c.label}: " + ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in f.items()))
+            parts.append(f"{c.label}: " + ", ".join(f"{v} {outcome_words(k, v)}" for k, v in f.items()))
     if not parts:
         return "At the strongest meander no run failed."
     text = "How runs failed at the strongest meander: " + "; ".join(parts) + "."
-    if any(c.failures.get("gave_up") for c in lines):
+    if any(c.failures[-1].get("gave_up") for c in lines):
         text += (" \u201cGave up\u201d is the algorithm's own rule ending the run: surge-cast "
                  "stops when both of its casts find no odor (docs/model.md, section 7.4); in a "
                  "meandering plume the odor has often moved sideways beyond the casts.")

@@ -8,7 +8,9 @@ packages=(
   libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev
   libgtest-dev libbenchmark-dev
   python3 python3-dev pybind11-dev python3-matplotlib python3-numpy python3-pytest
-  python3-optuna python3-sklearn python3-hypothesis
+  python3-optuna python3-sklearn python3-hypothesis python3-pandas
+  # `pip install .` offline (pyproject.toml, setup.py) and its test in a fresh venv
+  python3-pip python3-venv python3-setuptools python3-wheel
   clang libfuzzer-14-dev
   libopenmpi-dev openmpi-bin
   chromium

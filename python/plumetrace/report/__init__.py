@@ -1,6 +1,6 @@
 """The reproduction report, built from a `plumetrace reproduce` output folder.
 
-    PYTHONPATH=python python3 -m plumetrace.report OUT_DIR
+    python3 -m plumetrace.report OUT_DIR    (the package installed; docs/report.md)
 
 reads OUT_DIR/summary.json (and OUT_DIR/sensitivity.json when it exists) and writes
 OUT_DIR/report.html (self-contained: every figure is embedded as a data URI), OUT_DIR/report.md

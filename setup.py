@@ -59,8 +59,13 @@ class CMakeBuild(build_ext):
                 f"setup.py: the CMake build in {build_dir} made no {module} for this Python "
                 f"({sys.executable}); configure it with -DPython3_EXECUTABLE={sys.executable}, "
                 "or unset PLUMETRACE_CMAKE_BUILD_DIR")
-        # the package as CMake assembled it, with this Python's module only
         target = Path(self.get_ext_fullpath(ext.name)).parent
+        if self.inplace:
+            # an editable install (pip install -e .): the module beside the sources; the
+            # package data is found in the repository (plumetrace.studies)
+            shutil.copy2(package / module, target / module)
+            return
+        # the package as CMake assembled it, with this Python's module only
         shutil.copytree(package, target, dirs_exist_ok=True,
                         ignore=lambda folder, names: [
                             n for n in names

@@ -12,8 +12,9 @@ foreach(var SRC DEST)
 endforeach()
 set(pkg ${DEST}/plumetrace)
 
+# (a module an editable install left in the sources is not this build's)
 file(COPY ${SRC}/python/plumetrace DESTINATION ${DEST}
-     PATTERN __pycache__ EXCLUDE PATTERN "*.pyc" EXCLUDE)
+     PATTERN __pycache__ EXCLUDE PATTERN "*.pyc" EXCLUDE PATTERN "_core.*" EXCLUDE)
 # the studies: what `plumetrace.studies.NAME` finds (sweep files, presets, study.toml) and
 # the reports' code kept beside the study
 foreach(study lochmatter2008 meander)

@@ -10,6 +10,9 @@
 // why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
 // operations that round identically at every width, so every version gives the same bits
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    !defined(PLUMETRACE_NO_VECTOR_CLONES) && defined(PLUMETRACE_NO_AVX512)
+#define PLUMETRACE_VECTOR_CLONES __attribute__((target_clones("default", "arch=x86-64-v3")))
+#elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     !defined(PLUMETRACE_NO_VECTOR_CLONES)
 #define PLUMETRACE_VECTOR_CLONES \
   __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))

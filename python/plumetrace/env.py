@@ -217,6 +217,10 @@ class _Env:
             self._np_random, self._np_random_seed = _np_random()
         return self._np_random
 
+    @np_random.setter
+    def np_random(self, generator):
+        self._np_random, self._np_random_seed = generator, -1
+
     @property
     def np_random_seed(self):
         """The seed of np_random (-1 if it was set otherwise)."""

@@ -258,6 +258,8 @@ def test_our_env_base_seeds_np_random_like_gymnasium():
     assert base.np_random_seed == 42 and base.unwrapped is base
     with envmod._Env() as other:
         assert other.np_random is not None  # from fresh entropy
+        other.np_random = np.random.default_rng(1)
+        assert other.np_random_seed == -1  # a generator set directly: its seed is unknown
 
 
 # -- gymnasium itself, where it is installed ---------------------------------------------------

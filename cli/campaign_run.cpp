@@ -42,7 +42,7 @@ bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep
 }
 
 int draw_report(const std::string& out, const std::string& module) {
-  const std::string python_path = std::string(kSourceDir) + "/python";
+  const std::string python_path = data_dir() + "/python";
   // what the report prints follows what was printed here
   std::fflush(nullptr);
   const int rc = run_program({kPython, "-m", module, out}, {"PYTHONPATH=" + python_path});

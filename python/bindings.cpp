@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -760,6 +761,19 @@ PYBIND11_MODULE(_core, m) {
              return py::make_tuple(p.x, p.y, p.heading);
            })
       .def("odometer", [](const pt::World& w) { return w.robot().odometer; })
+      .def(
+          "filaments",
+          [](const pt::World& w) {
+            // why: only puffs are drawn, as in traces; another odor model gives no filaments
+            const pt::OdorSnapshot snap = w.environment().odor->snapshot();
+            const bool puffs = snap.kind == pt::OdorSnapshotKind::kFilaments;
+            const auto column = [&](std::span<const double> v) {
+              return py::array_t<double>(static_cast<py::ssize_t>(puffs ? v.size() : 0), v.data());
+            };
+            const pt::FilamentSpans& f = snap.filaments;
+            return py::make_tuple(column(f.x), column(f.y), column(f.w));
+          },
+          "the filaments' centres x, y and widths (m) now, as NumPy copies (for rendering)")
       .def("result_json", [](const pt::World& w) {
         const pt::RunResult r = w.result();
         return pt::result_to_json(r, {"external", r.seed, r.trial});

@@ -547,13 +547,22 @@ std::vector<std::uint8_t> unbase64(const std::string& s) {
   return out;
 }
 
-std::vector<double> dequantize(const json& q) {
+// a column of the page: steps of q.bits bits packed from the lowest bit up
+std::vector<double> dequantize(const json& q, std::size_t n) {
   const auto raw = unbase64(q["data"].get<std::string>());
+  const int bits = q["bits"].get<int>();
   std::vector<double> out;
-  for (std::size_t i = 0; i + 1 < raw.size(); i += 2) {
+  std::uint32_t pending = 0;
+  int held = 0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (; held < bits; held += 8) pending |= static_cast<std::uint32_t>(raw.at(at++)) << held;
     out.push_back(q["origin"].get<double>() +
-                  (raw[i] | (raw[i + 1] << 8)) * q["unit"].get<double>());
+                  (pending & ((1u << bits) - 1)) * q["unit"].get<double>());
+    pending >>= bits;
+    held -= bits;
   }
+  EXPECT_EQ(at, raw.size()) << "no byte left over";
   return out;
 }
 
@@ -579,7 +588,9 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
   const json& snaps = d["snapshots"];
   ASSERT_EQ(snaps["time"].size(), 10u);
   EXPECT_EQ(snaps["time"].back(), run.trace.snapshots.back().time);
-  const auto x = dequantize(snaps["x"]), w = dequantize(snaps["w"]);
+  std::size_t n = 0;
+  for (const auto& c : snaps["count"]) n += c.get<std::size_t>();
+  const auto x = dequantize(snaps["x"], n), w = dequantize(snaps["w"], n);
   const auto& last = run.trace.snapshots.back();
   const std::size_t offset = x.size() - last.x.size();
   for (std::size_t k = 0; k < last.x.size(); ++k) {
@@ -587,10 +598,23 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
     ASSERT_NEAR(w[offset + k], last.w[k], 0.5 * snaps["w"]["unit"].get<double>() + 1e-12);
   }
   EXPECT_LE(snaps["x"]["unit"].get<double>(), 1e-3);
-  // shades span the range: the youngest (narrowest) filament is the darkest
-  const auto shade = unbase64(snaps["shade"].get<std::string>());
-  EXPECT_EQ(*std::max_element(shade.begin(), shade.end()), 255);
-  EXPECT_EQ(*std::min_element(shade.begin(), shade.end()), 0);
+  // as few bits as each range needs: x over the 16 m arena in 1 mm (14 bits), y over the plume's
+  // width (under 2^12 mm), widths grown by under 1.28 mm in 0.01 mm (7 bits)
+  EXPECT_EQ(snaps["x"]["bits"], 14);
+  EXPECT_LE(snaps["y"]["bits"], 12);
+  EXPECT_LE(snaps["w"]["bits"], 7);
+  EXPECT_EQ(snaps["w"]["unit"], 1e-5);
+  // shades span the widths kept, the narrowest (youngest) the darkest
+  double w_min = INFINITY, w_max = 0.0;
+  for (const auto& f : run.trace.snapshots) {
+    for (const double v : f.w) w_min = std::min(w_min, v), w_max = std::max(w_max, v);
+  }
+  EXPECT_EQ(snaps["shade"]["w_min"], w_min);
+  EXPECT_EQ(snaps["shade"]["w_max"], w_max);
+  // a steady wind's field is sent once
+  const json& field = snaps["wind_field"]["u"];
+  EXPECT_EQ(field[0].size(), run.trace.wind_grid.size());
+  for (std::size_t i = 1; i < field.size(); ++i) EXPECT_TRUE(field[i].is_null()) << i;
 
   // every wind sample, rotated into the world frame, with the true wind where it was taken
   std::size_t samples = 0;
@@ -636,6 +660,18 @@ TEST(Viewer, DetectionRegionIsWhereTheRobotPerceivedOdor) {
   }
   EXPECT_GT(odor, 100) << "the robot was in odor often enough to tell";
   EXPECT_EQ(agree, compared);
+}
+
+TEST(Viewer, EveryKernelsPeakFallsAsTheWidthCubed) {
+  // the page shades a filament by its width alone: its peak, a constant over w^3, on a log scale
+  for (const Kernel kernel : {Kernel::kPrinted, Kernel::kGaussian}) {
+    PlumeParams p;
+    p.kernel = kernel;
+    const double c = kernel_value(p, 0.1, 0.0) * 1e-3;
+    for (const double w : {0.01, 0.05, 0.3, 2.0}) {
+      EXPECT_NEAR(kernel_value(p, w, 0.0) * w * w * w, c, 1e-12 * c) << w;
+    }
+  }
 }
 
 TEST(Viewer, DataCannotEndTheScriptElement) {

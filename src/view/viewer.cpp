@@ -289,14 +289,35 @@ ShadeRange shade_range(const RecordedRun& run, const std::vector<std::size_t>& s
   return {std::min(a, b), std::max(a, b)};
 }
 
-json quantized_json(const Quantizer& q, const std::vector<double>& values) {
-  return {{"origin", q.origin}, {"unit", q.unit}, {"data", detail::quantized_base64(q, values)}};
+// a column of numbers in [lo, hi] to steps of `finest`, each in as few bits as its range needs
+// (at most 16, with coarser steps where 16 bits of `finest` do not span it), packed into bytes
+// from the lowest bit up; value = origin + unit * step
+json column_json(double lo, double hi, double finest, const std::vector<double>& values) {
+  int bits = 1;
+  while (bits < 16 && (hi - lo) / finest > static_cast<double>((1 << bits) - 1)) ++bits;
+  const double top = static_cast<double>((1 << bits) - 1);
+  const double unit = std::max(finest, (hi - lo) / top);
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve((values.size() * static_cast<std::size_t>(bits) + 7) / 8);
+  std::uint32_t pending = 0;
+  int held = 0;
+  for (const double v : values) {
+    pending |= static_cast<std::uint32_t>(std::clamp(std::round((v - lo) / unit), 0.0, top))
+               << held;
+    for (held += bits; held >= 8; held -= 8, pending >>= 8) {
+      bytes.push_back(static_cast<std::uint8_t>(pending & 0xff));
+    }
+  }
+  if (held > 0) bytes.push_back(static_cast<std::uint8_t>(pending & 0xff));
+  return {{"origin", lo}, {"unit", unit}, {"bits", bits}, {"data", detail::base64(bytes)}};
 }
 
-// the true wind at the trace's grid for each kept snapshot (none for a trace without one)
+// the true wind at the trace's grid for each kept snapshot (none for a trace without one); null
+// for a snapshot whose field is the one before it (a steady wind's, after the first)
 json wind_field_json(const RecordedRun& run, const std::vector<std::size_t>& kept) {
   const WindGrid& g = run.trace.wind_grid;
   json u = json::array(), v = json::array();
+  json last_u, last_v;
   for (const std::size_t i : kept) {
     const auto& s = run.trace.snapshots[i];
     json su = json::array(), sv = json::array();
@@ -304,8 +325,10 @@ json wind_field_json(const RecordedRun& run, const std::vector<std::size_t>& kep
       su.push_back(rounded(s.wind_x[k], 1e-3));
       sv.push_back(rounded(s.wind_y[k], 1e-3));
     }
-    u.push_back(std::move(su));
-    v.push_back(std::move(sv));
+    const bool same = su == last_u && sv == last_v;
+    last_u = su, last_v = sv;
+    u.push_back(same ? json(nullptr) : std::move(su));
+    v.push_back(same ? json(nullptr) : std::move(sv));
   }
   return {{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
           {"dy", g.dy}, {"ny", g.ny}, {"u", u},     {"v", v}};
@@ -334,7 +357,6 @@ json snapshots_json(const RecordedRun& run, const std::vector<std::size_t>& kept
                     const ShadeRange& range) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   std::vector<double> xs, ys, ws;
-  std::vector<std::uint8_t> shades;
   json times = json::array(), counts = json::array();
   for (const std::size_t i : kept) {
     const auto& s = run.trace.snapshots[i];
@@ -346,20 +368,20 @@ json snapshots_json(const RecordedRun& run, const std::vector<std::size_t>& kept
       xs.push_back(s.x[k]);
       ys.push_back(s.y[k]);
       ws.push_back(s.w[k]);
-      shades.push_back(
-          static_cast<std::uint8_t>(std::lround(255.0 * range.shade(log_peak(run, s.w[k])))));
     }
   }
-  // why: 1 mm positions and 0.01 mm widths are below a pixel at any sensible zoom
-  const Quantizer qx = Quantizer::over(lo[0], hi[0], 1e-3);
-  const Quantizer qy = Quantizer::over(lo[1], hi[1], 1e-3);
-  const Quantizer qw = Quantizer::over(lo[2], hi[2], 1e-5);
+  for (int c = 0; c < 3; ++c) {
+    if (!(lo[c] <= hi[c])) lo[c] = hi[c] = 0.0;
+  }
+  // why: 1 mm positions and 0.01 mm widths are below a pixel at any sensible zoom. A filament's
+  // shade is its peak on a log scale, and every kernel's peak is a constant over w^3
+  // (Viewer.EveryKernelsPeakFallsAsTheWidthCubed), so the page finds it from the width
   return {{"time", times},
           {"count", counts},
-          {"x", quantized_json(qx, xs)},
-          {"y", quantized_json(qy, ys)},
-          {"w", quantized_json(qw, ws)},
-          {"shade", detail::base64(shades)},
+          {"x", column_json(lo[0], hi[0], 1e-3, xs)},
+          {"y", column_json(lo[1], hi[1], 1e-3, ys)},
+          {"w", column_json(lo[2], hi[2], 1e-5, ws)},
+          {"shade", {{"w_min", lo[2]}, {"w_max", hi[2]}}},
           {"peak_lo", std::pow(10.0, range.lo)},
           {"peak_hi", std::pow(10.0, range.hi)},
           {"wind_field", wind_field_json(run, kept)},

@@ -606,13 +606,15 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
                            "\" stroke-width=\"3\"/>",
                        names[i].empty() ? "(no state)" : names[i]});
   }
-  entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +
-                         "\" fill-opacity=\"0.4\"/>",
-                     "filament (radius = width)"});
-  entries.push_back(
-      {std::string("<rect x=\"0\" y=\"-6\" width=\"14\" height=\"12\" fill=\"") + kRegionColor +
-           "\" fill-opacity=\"" + num(kRegionOpacity) + "\"/>",
-       "odor perceivable (concentration \u2265 " + short_number(sc.odor.threshold) + ")"});
+  if (!run.trace.snapshots.empty()) {
+    entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +
+                           "\" fill-opacity=\"0.4\"/>",
+                       "filament (radius = width)"});
+    entries.push_back(
+        {std::string("<rect x=\"0\" y=\"-6\" width=\"14\" height=\"12\" fill=\"") + kRegionColor +
+             "\" fill-opacity=\"" + num(kRegionOpacity) + "\"/>",
+         "odor perceivable (concentration \u2265 " + short_number(sc.odor.threshold) + ")"});
+  }
   entries.push_back(
       {std::string("<circle cx=\"7\" cy=\"0\" r=\"2.5\" fill-opacity=\"0.6\" fill=\"") +
            kDetectionColor + "\"/>",

@@ -330,7 +330,11 @@ py::dict run(const std::optional<std::string>& path, const py::list& overrides, 
   const pt::RunInfo info{algorithm, seed, trial};
   py::dict out = py::module_::import("json").attr("loads")(pt::result_to_json(result, info));
   if (view) {
-    pt::write_view(*view, {scenario, result, info, std::string(pt::version()), recorded}, {});
+    // why: the page `plumetrace view` draws from a trace of the run; the trace returned is exact
+    pt::Trace stored = recorded;
+    pt::round_as_stored(stored);
+    pt::write_view(*view, {scenario, result, info, std::string(pt::version()), std::move(stored)},
+                   {});
   }
   if (trace) {
     out["trajectory"] = trace_columns(recorded);

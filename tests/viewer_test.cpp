@@ -293,6 +293,25 @@ TEST(Trace, JsonTraceReadsBackStepsBitForBitAndFilamentsToHalfAStep) {
   }
 }
 
+TEST(Trace, RoundedAsStoredIsWhatTheFileReadsBack) {
+  // what `run --view` draws is what `view` draws from the trace file
+  const RecordedRun run = recorded_file_run("meander-strong.toml", {}, 1.0);
+  const RecordedRun back = written_and_read(run, "stored");
+  Trace rounded = run.trace;
+  round_as_stored(rounded);
+  ASSERT_EQ(rounded.snapshots.size(), back.trace.snapshots.size());
+  for (std::size_t i = 0; i < rounded.snapshots.size(); ++i) {
+    const auto &a = rounded.snapshots[i], &b = back.trace.snapshots[i];
+    ASSERT_EQ(a.x, b.x) << i;
+    ASSERT_EQ(a.y, b.y) << i;
+    ASSERT_EQ(a.z, b.z) << i;
+    ASSERT_EQ(a.w, b.w) << i;
+    ASSERT_EQ(a.wind_x, b.wind_x) << i;
+    ASSERT_EQ(a.wind_y, b.wind_y) << i;
+  }
+  EXPECT_NE(rounded.snapshots.back().x, run.trace.snapshots.back().x) << "it did round";
+}
+
 // the trace as format 1 (plumetrace 0.3.0) wrote it: every number a JSON number, states as text,
 // no true wind
 std::string format_1_trace(const RecordedRun& run) {

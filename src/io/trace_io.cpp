@@ -141,6 +141,19 @@ void write_json_trace(const std::string& path, const Trace& trace, const Scenari
 
 }  // namespace
 
+void round_as_stored(Trace& trace) {
+  for (const auto& [name, column] : kFilamentColumns) {
+    const Quantizer code = column_quantizer(trace, column);
+    for (auto& snap : trace.snapshots) {
+      for (double& v : snap.*column) v = code.value(code(v));
+    }
+  }
+  for (auto& snap : trace.snapshots) {
+    for (double& v : snap.wind_x) v = wind_rounded(v);
+    for (double& v : snap.wind_y) v = wind_rounded(v);
+  }
+}
+
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
                  const RunResult& result, const RunInfo& info) {
   if (ends_with(path, ".json")) {

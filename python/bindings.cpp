@@ -126,7 +126,7 @@ py::array_t<T> to_array(const std::vector<T>& values) {
 
 // a trace as NumPy columns (and the controller states as a list of str)
 py::dict trace_columns(const pt::Trace& trace) {
-  std::vector<double> t, x, y, heading, odometer, concentration, wind_x, wind_y;
+  std::vector<double> t, x, y, heading, odometer, concentration, wind_x, wind_y, true_x, true_y;
   std::vector<std::uint8_t> odor;
   std::vector<std::int32_t> wind_samples;
   py::list state;
@@ -141,6 +141,8 @@ py::dict trace_columns(const pt::Trace& trace) {
     wind_samples.push_back(s.wind_samples);
     wind_x.push_back(s.wind_samples > 0 ? s.wind_body.x : NAN);
     wind_y.push_back(s.wind_samples > 0 ? s.wind_body.y : NAN);
+    true_x.push_back(s.true_wind.x);
+    true_y.push_back(s.true_wind.y);
     state.append(s.state);
   }
   py::dict d;
@@ -154,6 +156,8 @@ py::dict trace_columns(const pt::Trace& trace) {
   d["wind_samples"] = to_array(wind_samples);
   d["wind_x"] = to_array(wind_x);
   d["wind_y"] = to_array(wind_y);
+  d["true_wind_x"] = to_array(true_x);
+  d["true_wind_y"] = to_array(true_y);
   d["state"] = state;
   return d;
 }
@@ -328,7 +332,11 @@ py::dict run(const std::optional<std::string>& path, const py::list& overrides, 
   const pt::RunInfo info{algorithm, seed, trial};
   py::dict out = py::module_::import("json").attr("loads")(pt::result_to_json(result, info));
   if (view) {
-    pt::write_view(*view, {scenario, result, info, std::string(pt::version()), recorded}, {});
+    // why: the page `plumetrace view` draws from a trace of the run; the trace returned is exact
+    pt::Trace stored = recorded;
+    pt::round_as_stored(stored);
+    pt::write_view(*view, {scenario, result, info, std::string(pt::version()), std::move(stored)},
+                   {});
   }
   if (trace) {
     out["trajectory"] = trace_columns(recorded);

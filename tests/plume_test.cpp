@@ -690,5 +690,29 @@ TEST(Plume, ReachesAnswersExactlyAsTheFullSum) {
   EXPECT_LT(odor, 3900);
 }
 
+TEST(Plume, KernelReachIsWhereTheKernelFallsToTheFloor) {
+  for (const Kernel kernel : {Kernel::kPrinted, Kernel::kGaussian}) {
+    PlumeParams p;
+    p.kernel = kernel;
+    p.amount = kernel == Kernel::kGaussian ? 8.3e9 : 1.0;
+    p.cutoff = INFINITY;
+    for (const double w : {0.05, 0.1, 0.3}) {
+      for (const double floor : {1e-7, 1.0, 50.0}) {
+        const double r = kernel_reach(p, w, floor);
+        if (kernel_value(p, w, 0.0) < floor) {
+          EXPECT_EQ(r, 0.0);
+          continue;
+        }
+        ASSERT_GT(r, 0.0);
+        EXPECT_GE(kernel_value(p, w, r * r * (1 - 1e-9)), floor) << w << " " << floor;
+        EXPECT_LT(kernel_value(p, w, r * r * (1 + 1e-9)), floor) << w << " " << floor;
+      }
+    }
+    // never beyond the cut-off, where the kernel is 0
+    p.cutoff = 0.01;
+    EXPECT_EQ(kernel_reach(p, 0.1, 1e-12), 0.01);
+  }
+}
+
 }  // namespace
 }  // namespace plumetrace

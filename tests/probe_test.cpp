@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/env/environment.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/trace.hpp"
 
 namespace plumetrace {
 namespace {
@@ -182,6 +184,79 @@ TEST(ProbeStatistics, ABadSlabIsRefusedNamingTheOption) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--slab"), std::string::npos) << e.what();
   }
+}
+
+// The filaments of a plume stepped `steps` times, as a trace snapshot holds them.
+FilamentSnapshot snapshot_after(const Environment& env) {
+  const FilamentSpans f = env.odor->snapshot().filaments;
+  FilamentSnapshot snap;
+  snap.x.assign(f.x.begin(), f.x.end());
+  snap.y.assign(f.y.begin(), f.y.end());
+  snap.z.assign(f.z.begin(), f.z.end());
+  snap.w.assign(f.w.begin(), f.w.end());
+  return snap;
+}
+
+// cells on, and cells where the mask and the model's own concentration() disagree (away from the
+// threshold by more than the mask's stated 1e-9)
+std::pair<long, long> compare_mask(const Scenario& s, const Environment& env, const MapGrid& grid,
+                                   const std::vector<std::uint8_t>& mask) {
+  long on = 0, wrong = 0;
+  for (std::size_t j = 0; j < grid.y.size(); ++j) {
+    for (std::size_t i = 0; i < grid.x.size(); ++i) {
+      const double c = env.odor->concentration({grid.x[i], grid.y[j], grid.z});
+      const bool perceived = mask[j * grid.x.size() + i] == 1;
+      on += perceived;
+      if (std::abs(c / s.odor.threshold - 1.0) > 1e-6 && perceived != (c >= s.odor.threshold)) {
+        ++wrong;
+      }
+    }
+  }
+  return {on, wrong};
+}
+
+TEST(DetectionMask, IsWhereTheModelsConcentrationReachesTheThreshold) {
+  // the default plume, and the printed-amount plume on the Gaussian kernel (wide and dense)
+  for (const Scenario& s : {Scenario{}, printed_amount_scenario()}) {
+    Environment env = make_environment(s, 3, 0);
+    for (int k = 0; k < 1000; ++k) step(env, s.sim.dt);
+    const MapGrid grid = arena_grid(s, 0.05, 0.05);
+    const auto mask = detection_mask(s, snapshot_after(env), grid);
+    ASSERT_EQ(mask.size(), grid.x.size() * grid.y.size());
+    const auto [on, wrong] = compare_mask(s, env, grid, mask);
+    EXPECT_EQ(wrong, 0);
+    EXPECT_GT(on, 20) << "the region is not empty";
+    EXPECT_LT(on, static_cast<long>(mask.size()) / 2) << "nor the whole arena";
+  }
+}
+
+TEST(DetectionMask, OneFilamentPerceivedOutToItsAnalyticRadius) {
+  // one filament of width w at height dz under the sensor: the printed kernel s/w^3 exp(-d/w^2)
+  // reaches the threshold out to d = w^2 ln(s / (w^3 threshold)), so in the plane out to
+  // sqrt(d^2 - dz^2)
+  Scenario s;
+  s.odor.threshold = 10.0;
+  const double w = 0.2, dz = 0.05;
+  FilamentSnapshot snap;
+  snap.x = {3.0};
+  snap.y = {0.4};
+  snap.z = {s.odor.height - dz};
+  snap.w = {w};
+  const double d = w * w * std::log(s.plume.amount / (w * w * w * s.odor.threshold));
+  const double r = std::sqrt(d * d - dz * dz);
+  const MapGrid grid = arena_grid(s, 0.01, 0.01);
+  const auto mask = detection_mask(s, snap, grid);
+  long on = 0;
+  for (std::size_t j = 0; j < grid.y.size(); ++j) {
+    for (std::size_t i = 0; i < grid.x.size(); ++i) {
+      const double rho = std::hypot(grid.x[i] - 3.0, grid.y[j] - 0.4);
+      if (std::abs(rho - r) < 1e-9) continue;
+      ASSERT_EQ(mask[j * grid.x.size() + i], rho < r ? 1 : 0) << grid.x[i] << ", " << grid.y[j];
+      on += rho < r;
+    }
+  }
+  // the disc's area in 1 cm cells, to within its rim
+  EXPECT_NEAR(static_cast<double>(on), kPi * r * r / 1e-4, 2.0 * kPi * r / 1e-2);
 }
 
 }  // namespace

@@ -82,6 +82,8 @@ int RunCommand::run() {
     if (!json) std::cout << "  trace     " << trace_path << "\n";
   }
   if (!view_path.empty()) {
+    // why: the page is the one `plumetrace view` draws from the trace file
+    round_as_stored(trace);
     const RecordedRun recorded{s, result, info, std::string(version()), std::move(trace)};
     write_view(view_path, recorded, ViewerOptions{});
     if (!json) std::cout << "  view      " << view_path << "\n";

@@ -115,7 +115,8 @@ def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_int
         controller=None, overrides=None, view=None, **kwargs):
     """One run. Returns a dict with the keys of `plumetrace run --json` and, with `trace`,
     ``trajectory`` (NumPy arrays per step: time, x, y, heading, odometer, odor,
-    concentration, wind_samples, wind_x, wind_y, and state names) and ``snapshots``
+    concentration, wind_samples, wind_x, wind_y (the last sample, robot frame), true_wind_x,
+    true_wind_y (the true wind at the robot, world frame), and state names) and ``snapshots``
     (filaments every `snapshot_interval` s).
 
     `scenario`: a Scenario, a TOML path or None (defaults). `overrides` (dict of dotted keys)

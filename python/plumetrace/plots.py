@@ -21,6 +21,7 @@ def trajectory(result, scenario=None, snapshot=-1, ax=None):
     from matplotlib.patches import Circle, Rectangle
 
     from .api import Scenario
+    from .report.figures import _state_palette
 
     cfg = (scenario or Scenario()).to_dict()
     if ax is None:
@@ -35,10 +36,12 @@ def trajectory(result, scenario=None, snapshot=-1, ax=None):
                    lw=0, label=f"filaments at {s['time']:.0f} s")
     traj = result["trajectory"]
     states = np.asarray(traj["state"])
-    for k, name in enumerate(dict.fromkeys(traj["state"])):
+    # why: the report's and the run viewer's colour for each state
+    palette = _state_palette(traj["state"])
+    for name, color in palette.items():
         mask = states == name
         ax.plot(np.where(mask, traj["x"], np.nan), np.where(mask, traj["y"], np.nan), lw=1.6,
-                color=f"C{k}", label=name)
+                color=color, label=name)
     ax.add_patch(Circle((source["x"], source["y"]), source["radius"], color="tab:red"))
     ax.add_patch(Circle((source["x"], source["y"]), cfg["supervisor"]["success_radius"],
                         fill=False, ls="--", color="tab:red"))

@@ -232,6 +232,14 @@ double kernel_value(const PlumeParams& params, double w, double d2) {
                                             : kernel_at<Kernel::kPrinted>(scale, cut2, h, d2);
 }
 
+double kernel_reach(const PlumeParams& params, double w, double floor) {
+  // the peak over the floor, whose log the kernel's exponent must not exceed
+  const double ratio = std::log(kernel_scale(params) / (w * w * w * floor));
+  if (!(ratio >= 0.0)) return 0.0;
+  const double d = params.kernel == Kernel::kGaussian ? w * std::sqrt(ratio) : w * w * ratio;
+  return std::min(d, params.cutoff);
+}
+
 FilamentPlume::FilamentPlume(const PlumeParams& params, const SourceParams& source,
                              double removal_x, std::uint64_t seed)
     : params_(params), source_(source), removal_x_(removal_x), rng_(seed) {

@@ -1,5 +1,6 @@
 #include "plumetrace/io/json_util.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -63,6 +64,77 @@ std::string csv_text(std::string_view text) {
     if (c == '"') quoted += '"';
   }
   return quoted + '"';
+}
+
+namespace {
+
+constexpr char kBase64Digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+}  // namespace
+
+std::string base64(const std::vector<std::uint8_t>& bytes) {
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t b0 = bytes[i];
+    const std::uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
+    const std::uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
+    out += kBase64Digits[(v >> 18) & 63];
+    out += kBase64Digits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kBase64Digits[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kBase64Digits[v & 63] : '=';
+  }
+  return out;
+}
+
+bool unbase64(std::string_view text, std::vector<std::uint8_t>& bytes) {
+  bytes.clear();
+  if (text.size() % 4 != 0) return false;
+  bytes.reserve(text.size() / 4 * 3);
+  for (std::size_t i = 0; i < text.size(); i += 4) {
+    std::uint32_t v = 0;
+    int pad = 0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const char c = text[i + k];
+      std::uint32_t digit = 0;
+      if (c == '=' && i + 4 == text.size() && k >= 2) {
+        ++pad;
+      } else {
+        const char* at = std::find(kBase64Digits, kBase64Digits + 64, c);
+        // why: a digit after padding, or one outside the alphabet, is not base64
+        if (at == kBase64Digits + 64 || pad > 0) return false;
+        digit = static_cast<std::uint32_t>(at - kBase64Digits);
+      }
+      v = (v << 6) | digit;
+    }
+    bytes.push_back(static_cast<std::uint8_t>(v >> 16));
+    if (pad < 2) bytes.push_back(static_cast<std::uint8_t>((v >> 8) & 0xff));
+    if (pad < 1) bytes.push_back(static_cast<std::uint8_t>(v & 0xff));
+  }
+  return true;
+}
+
+Quantizer Quantizer::over(double lo, double hi, double finest) {
+  if (!(lo <= hi)) return {0.0, std::max(finest, 1.0)};
+  const double unit = std::max(finest, (hi - lo) / 65535.0);
+  return {lo, unit > 0.0 ? unit : 1.0};
+}
+
+std::uint16_t Quantizer::operator()(double v) const {
+  if (std::isnan(v)) return 0;
+  return static_cast<std::uint16_t>(std::clamp(std::round((v - origin) / unit), 0.0, 65535.0));
+}
+
+std::string quantized_base64(const Quantizer& q, const std::vector<double>& values) {
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(2 * values.size());
+  for (const double v : values) {
+    const std::uint16_t word = q(v);
+    bytes.push_back(static_cast<std::uint8_t>(word & 0xff));
+    bytes.push_back(static_cast<std::uint8_t>(word >> 8));
+  }
+  return base64(bytes);
 }
 
 }  // namespace plumetrace::detail

@@ -1,11 +1,14 @@
 #include "plumetrace/io/trace_io.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/io/json_util.hpp"
@@ -15,7 +18,10 @@ namespace plumetrace {
 
 using detail::csv_text;
 using detail::number_or_null;
+using detail::quantized_base64;
+using detail::Quantizer;
 using detail::result_json;
+using detail::unbase64;
 using nlohmann::json;
 
 void check_trace_path(const std::string& path) {
@@ -27,59 +33,131 @@ void check_trace_path(const std::string& path) {
   for (const auto& f : files) check_writable(f);
 }
 
+namespace {
+
+// the trace format written; read_trace reads it and every earlier one
+constexpr int kTraceFormat = 2;
+
+// the columns of every snapshot, in the order of the file's keys
+constexpr std::array<std::pair<const char*, std::vector<double> FilamentSnapshot::*>, 4>
+    kFilamentColumns{{{"w", &FilamentSnapshot::w},
+                      {"x", &FilamentSnapshot::x},
+                      {"y", &FilamentSnapshot::y},
+                      {"z", &FilamentSnapshot::z}}};
+
+// why: 1e-6 m/s is far below any wind sensor's noise, and halves the digits of a meander's field
+double wind_rounded(double v) { return std::round(v * 1e6) / 1e6; }
+
+json rounded_winds(const std::vector<double>& values) {
+  json out = json::array();
+  for (const double v : values) out.push_back(wind_rounded(v));
+  return out;
+}
+
+// the 16-bit code of one filament column over every snapshot of the trace
+Quantizer column_quantizer(const Trace& trace, std::vector<double> FilamentSnapshot::*column) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& snap : trace.snapshots) {
+    for (const double v : snap.*column) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  return Quantizer::over(lo, hi, 0.0);
+}
+
+// format 2: the steps as the run computed them (states as indices into their names), the
+// filaments in 16 bits each over their range, the wind grid to 1e-6 m/s
+void write_json_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
+                      const RunResult& result, const RunInfo& info) {
+  std::vector<std::string> names;
+  json steps{{"time", json::array()},
+             {"x", json::array()},
+             {"y", json::array()},
+             {"heading", json::array()},
+             {"odometer", json::array()},
+             {"state", json::array()},
+             {"odor", json::array()},
+             {"concentration", json::array()},
+             {"wind_samples", json::array()},
+             {"wind_x_body", json::array()},
+             {"wind_y_body", json::array()},
+             {"wind_z_body", json::array()},
+             {"true_wind_x", json::array()},
+             {"true_wind_y", json::array()}};
+  for (const auto& s : trace.steps) {
+    auto name = std::find(names.begin(), names.end(), s.state);
+    if (name == names.end()) name = names.insert(names.end(), s.state);
+    steps["time"].push_back(s.time);
+    steps["x"].push_back(s.pose.x);
+    steps["y"].push_back(s.pose.y);
+    steps["heading"].push_back(s.pose.heading);
+    steps["odometer"].push_back(s.odometer);
+    steps["state"].push_back(name - names.begin());
+    steps["odor"].push_back(s.odor ? 1 : 0);
+    steps["concentration"].push_back(s.concentration);
+    steps["wind_samples"].push_back(s.wind_samples);
+    const bool sampled = s.wind_samples > 0;
+    steps["wind_x_body"].push_back(sampled ? json(s.wind_body.x) : json(nullptr));
+    steps["wind_y_body"].push_back(sampled ? json(s.wind_body.y) : json(nullptr));
+    steps["wind_z_body"].push_back(sampled ? json(s.wind_body.z) : json(nullptr));
+    steps["true_wind_x"].push_back(number_or_null(s.true_wind.x));
+    steps["true_wind_y"].push_back(number_or_null(s.true_wind.y));
+  }
+  steps["state_names"] = names;
+
+  json encoding = json::object();
+  std::array<Quantizer, kFilamentColumns.size()> codes;
+  for (std::size_t c = 0; c < kFilamentColumns.size(); ++c) {
+    codes[c] = column_quantizer(trace, kFilamentColumns[c].second);
+    encoding[kFilamentColumns[c].first] = {{"origin", codes[c].origin}, {"unit", codes[c].unit}};
+  }
+
+  // why: written a snapshot at a time, as the dump of the whole document would be (keys in
+  // nlohmann's order), since the snapshots are most of it and a document of them all held
+  // several times the trace's memory
+  OutputFile file(path);
+  auto& out = file.stream();
+  out << R"({"config":)" << json::parse(scenario_to_json(scenario)).dump()
+      << R"(,"plumetrace_trace":)" << kTraceFormat << R"(,"result":)"
+      << result_json(result, info).dump() << R"(,"snapshot_encoding":)" << encoding.dump()
+      << R"(,"snapshots":[)";
+  for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
+    const auto& snap = trace.snapshots[i];
+    if (i > 0) out << ',';
+    json j{{"time", snap.time},
+           {"wind_x", rounded_winds(snap.wind_x)},
+           {"wind_y", rounded_winds(snap.wind_y)}};
+    for (std::size_t c = 0; c < kFilamentColumns.size(); ++c) {
+      j[kFilamentColumns[c].first] = quantized_base64(codes[c], snap.*kFilamentColumns[c].second);
+    }
+    out << j.dump();
+  }
+  const WindGrid& g = trace.wind_grid;
+  out << R"(],"steps":)" << steps.dump() << R"(,"wind_grid":)"
+      << json{{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
+              {"dy", g.dy}, {"ny", g.ny}, {"z", g.z}}
+             .dump()
+      << "}\n";
+  file.commit();
+}
+
+}  // namespace
+
+void round_as_stored(Trace& trace) {
+  for (const auto& [name, column] : kFilamentColumns) {
+    const Quantizer code = column_quantizer(trace, column);
+    for (auto& snap : trace.snapshots) {
+      for (double& v : snap.*column) v = code.value(code(v));
+    }
+  }
+  for (auto& snap : trace.snapshots) {
+    for (double& v : snap.wind_x) v = wind_rounded(v);
+    for (double& v : snap.wind_y) v = wind_rounded(v);
+  }
+}
+
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
                  const RunResult& result, const RunInfo& info) {
   if (ends_with(path, ".json")) {
-    json steps{{"time", json::array()},
-               {"x", json::array()},
-               {"y", json::array()},
-               {"heading", json::array()},
-               {"odometer", json::array()},
-               {"state", json::array()},
-               {"odor", json::array()},
-               {"concentration", json::array()},
-               {"wind_samples", json::array()},
-               {"wind_x_body", json::array()},
-               {"wind_y_body", json::array()},
-               {"wind_z_body", json::array()}};
-    for (const auto& s : trace.steps) {
-      steps["time"].push_back(s.time);
-      steps["x"].push_back(s.pose.x);
-      steps["y"].push_back(s.pose.y);
-      steps["heading"].push_back(s.pose.heading);
-      steps["odometer"].push_back(s.odometer);
-      steps["state"].push_back(s.state);
-      steps["odor"].push_back(s.odor);
-      steps["concentration"].push_back(s.concentration);
-      steps["wind_samples"].push_back(s.wind_samples);
-      const bool sampled = s.wind_samples > 0;
-      steps["wind_x_body"].push_back(sampled ? json(s.wind_body.x) : json(nullptr));
-      steps["wind_y_body"].push_back(sampled ? json(s.wind_body.y) : json(nullptr));
-      steps["wind_z_body"].push_back(sampled ? json(s.wind_body.z) : json(nullptr));
-    }
-    // why: written a snapshot at a time, as the dump of the whole document would be (keys in
-    // nlohmann's order), since the snapshots are most of it and a document of them all held
-    // several times the trace's memory
-    OutputFile file(path);
-    auto& out = file.stream();
-    out << R"({"config":)" << json::parse(scenario_to_json(scenario)).dump()
-        << R"(,"plumetrace_trace":1,"result":)" << result_json(result, info).dump()
-        << R"(,"snapshots":[)";
-    for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
-      const auto& snap = trace.snapshots[i];
-      if (i > 0) out << ',';
-      out << json{{"time", snap.time}, {"x", snap.x},           {"y", snap.y},
-                  {"z", snap.z},       {"w", snap.w},           {"wind_x", snap.wind_x},
-                  {"wind_y", snap.wind_y}}
-                 .dump();
-    }
-    const WindGrid& g = trace.wind_grid;
-    out << R"(],"steps":)" << steps.dump() << R"(,"wind_grid":)"
-        << json{{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
-                {"dy", g.dy}, {"ny", g.ny}, {"z", g.z}}
-               .dump()
-        << "}\n";
-    file.commit();
+    write_json_trace(path, trace, scenario, result, info);
     return;
   }
   if (!ends_with(path, ".csv")) {
@@ -171,6 +249,133 @@ double number_or_nan(const json& v) {
   return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
 }
 
+// the true wind of a trace that did not record it (format 1): the scenario's where its wind
+// blows the same everywhere and always, unknown (NaN) otherwise. why: a switch, so that a wind
+// model added later (-Wswitch) is named here
+Vec2 unrecorded_true_wind(const WindParams& wind) {
+  const Vec2 mean{wind.velocity.x, wind.velocity.y};
+  switch (wind.model) {
+    case WindModel::kConstant:
+      return mean;
+    case WindModel::kMeander:
+      return wind.meander.gain == 0.0 ? mean : Vec2{NAN, NAN};
+  }
+  return {NAN, NAN};
+}
+
+void read_steps(const json& st, int format, const std::string& path, RecordedRun& run) {
+  constexpr auto kInt = std::numeric_limits<int>::max();
+  const std::size_t n = st.at("time").size();
+  std::vector<std::string> columns{"x",           "y",           "heading",       "odometer",
+                                   "state",       "odor",        "concentration", "wind_samples",
+                                   "wind_x_body", "wind_y_body", "wind_z_body"};
+  // why: format 1 has no true wind, and a trace of format 2 written from one may lack it too
+  const bool true_wind = st.contains("true_wind_x") || st.contains("true_wind_y");
+  if (true_wind) columns.insert(columns.end(), {"true_wind_x", "true_wind_y"});
+  for (const auto& column : columns) {
+    if (st.at(column).size() != n) {
+      throw ConfigError("trace '" + path + "': column '" + column + "' has " +
+                        std::to_string(st.at(column).size()) + " rows, 'time' has " +
+                        std::to_string(n));
+    }
+  }
+  if (n == 0) throw ConfigError("trace '" + path + "': no steps");
+  std::vector<std::string> names;
+  if (format >= 2) names = st.at("state_names").get<std::vector<std::string>>();
+  const Vec2 unrecorded = unrecorded_true_wind(run.scenario.wind);
+  run.trace.steps.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string row = "[";
+    row += std::to_string(i);
+    row += ']';
+    TraceStep& s = run.trace.steps[i];
+    s.time = st["time"][i].get<double>();
+    s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(), st["heading"][i].get<double>()};
+    s.odometer = st["odometer"][i].get<double>();
+    if (format >= 2) {
+      if (names.empty()) throw ConfigError("trace '" + path + "': steps.state_names is empty");
+      s.state = names[trace_integer<std::size_t>(st["state"][i], path, "steps.state" + row, 0,
+                                                 names.size() - 1)];
+    } else {
+      s.state = st["state"][i].get<std::string>();
+    }
+    const json& odor = st["odor"][i];
+    s.odor = odor.is_boolean() ? odor.get<bool>()
+                               : trace_integer<int>(odor, path, "steps.odor" + row, 0, 1) == 1;
+    s.concentration = st["concentration"][i].get<double>();
+    s.wind_samples =
+        trace_integer<int>(st["wind_samples"][i], path, "steps.wind_samples" + row, 0, kInt);
+    if (s.wind_samples > 0) {
+      s.wind_body = {st["wind_x_body"][i].get<double>(), st["wind_y_body"][i].get<double>(),
+                     st["wind_z_body"][i].get<double>()};
+    }
+    s.true_wind =
+        true_wind ? Vec2{number_or_nan(st["true_wind_x"][i]), number_or_nan(st["true_wind_y"][i])}
+                  : unrecorded;
+  }
+}
+
+void check_snapshot(const FilamentSnapshot& f, const std::string& path) {
+  if (f.y.size() != f.x.size() || f.z.size() != f.x.size() || f.w.size() != f.x.size()) {
+    throw ConfigError("trace '" + path + "': a filament snapshot has columns of unequal length");
+  }
+}
+
+// format 1: every column a JSON array of numbers
+void read_snapshots_1(const json& snapshots, const std::string& path, Trace& trace) {
+  for (const auto& snap : snapshots) {
+    FilamentSnapshot f;
+    f.time = snap.at("time").get<double>();
+    for (const auto& [name, column] : kFilamentColumns) {
+      f.*column = snap.at(name).get<std::vector<double>>();
+    }
+    // why: traces of 0.3.0 carry no wind field
+    if (snap.contains("wind_x")) {
+      f.wind_x = snap.at("wind_x").get<std::vector<double>>();
+      f.wind_y = snap.at("wind_y").get<std::vector<double>>();
+    }
+    check_snapshot(f, path);
+    trace.snapshots.push_back(std::move(f));
+  }
+}
+
+// format 2: each filament column 16-bit words in base64, decoded by the trace's encoding
+void read_snapshots_2(const json& snapshots, const json& encoding, const std::string& path,
+                      Trace& trace) {
+  std::array<Quantizer, kFilamentColumns.size()> codes;
+  for (std::size_t c = 0; c < kFilamentColumns.size(); ++c) {
+    const json& e = encoding.at(kFilamentColumns[c].first);
+    codes[c] = {e.at("origin").get<double>(), e.at("unit").get<double>()};
+    if (!std::isfinite(codes[c].origin) || !(codes[c].unit > 0.0) ||
+        !std::isfinite(codes[c].unit)) {
+      throw ConfigError("trace '" + path + "': snapshot_encoding." + kFilamentColumns[c].first +
+                        " must have a finite origin and a positive unit");
+    }
+  }
+  std::vector<std::uint8_t> bytes;
+  for (const auto& snap : snapshots) {
+    FilamentSnapshot f;
+    f.time = snap.at("time").get<double>();
+    for (std::size_t c = 0; c < kFilamentColumns.size(); ++c) {
+      const auto& [name, column] = kFilamentColumns[c];
+      if (!unbase64(snap.at(name).get<std::string>(), bytes) || bytes.size() % 2 != 0) {
+        throw ConfigError("trace '" + path + "': a filament snapshot's '" + name +
+                          "' is not base64 of 16-bit words");
+      }
+      auto& values = f.*column;
+      values.resize(bytes.size() / 2);
+      for (std::size_t k = 0; k < values.size(); ++k) {
+        values[k] =
+            codes[c].value(static_cast<std::uint16_t>(bytes[2 * k] | bytes[2 * k + 1] << 8));
+      }
+    }
+    f.wind_x = snap.at("wind_x").get<std::vector<double>>();
+    f.wind_y = snap.at("wind_y").get<std::vector<double>>();
+    check_snapshot(f, path);
+    trace.snapshots.push_back(std::move(f));
+  }
+}
+
 }  // namespace
 
 RecordedRun read_trace(const std::string& path) {
@@ -189,11 +394,17 @@ RecordedRun read_trace(const std::string& path) {
     if (!doc.is_object() || !doc.contains("plumetrace_trace")) {
       throw ConfigError("trace '" + path + "': not a plumetrace trace (no 'plumetrace_trace' key)");
     }
+    const int format = trace_integer<int>(doc.at("plumetrace_trace"), path, "plumetrace_trace", 1,
+                                          std::numeric_limits<int>::max());
+    if (format > kTraceFormat) {
+      throw ConfigError("trace '" + path + "': trace format " + std::to_string(format) +
+                        " is newer than plumetrace " + std::string(version()) + " reads (1 to " +
+                        std::to_string(kTraceFormat) + ")");
+    }
     run.scenario = build_scenario(config_settings(doc.at("config"), path));
 
     const json& r = doc.at("result");
     constexpr auto kU64 = std::numeric_limits<std::uint64_t>::max();
-    constexpr auto kInt = std::numeric_limits<int>::max();
     run.info = {r.at("algorithm").get<std::string>(),
                 trace_integer<std::uint64_t>(r.at("seed"), path, "result.seed", 0, kU64),
                 trace_integer<std::uint64_t>(r.at("trial"), path, "result.trial", 0, kU64)};
@@ -215,50 +426,11 @@ RecordedRun read_trace(const std::string& path) {
     run.result.seed = run.info.seed;
     run.result.trial = run.info.trial;
 
-    const json& st = doc.at("steps");
-    const std::size_t n = st.at("time").size();
-    for (const char* column : {"x", "y", "heading", "odometer", "state", "odor", "concentration",
-                               "wind_samples", "wind_x_body", "wind_y_body", "wind_z_body"}) {
-      if (st.at(column).size() != n) {
-        throw ConfigError("trace '" + path + "': column '" + column + "' has " +
-                          std::to_string(st.at(column).size()) + " rows, 'time' has " +
-                          std::to_string(n));
-      }
-    }
-    if (n == 0) throw ConfigError("trace '" + path + "': no steps");
-    run.trace.steps.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      TraceStep& s = run.trace.steps[i];
-      s.time = st["time"][i].get<double>();
-      s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(), st["heading"][i].get<double>()};
-      s.odometer = st["odometer"][i].get<double>();
-      s.state = st["state"][i].get<std::string>();
-      s.odor = st["odor"][i].get<bool>();
-      s.concentration = st["concentration"][i].get<double>();
-      s.wind_samples = trace_integer<int>(st["wind_samples"][i], path,
-                                          "steps.wind_samples[" + std::to_string(i) + "]", 0, kInt);
-      if (s.wind_samples > 0) {
-        s.wind_body = {st["wind_x_body"][i].get<double>(), st["wind_y_body"][i].get<double>(),
-                       st["wind_z_body"][i].get<double>()};
-      }
-    }
-    for (const auto& snap : doc.at("snapshots")) {
-      FilamentSnapshot f;
-      f.time = snap.at("time").get<double>();
-      f.x = snap.at("x").get<std::vector<double>>();
-      f.y = snap.at("y").get<std::vector<double>>();
-      f.z = snap.at("z").get<std::vector<double>>();
-      f.w = snap.at("w").get<std::vector<double>>();
-      // why: traces of 0.3.0 carry no wind field
-      if (snap.contains("wind_x")) {
-        f.wind_x = snap.at("wind_x").get<std::vector<double>>();
-        f.wind_y = snap.at("wind_y").get<std::vector<double>>();
-      }
-      if (f.y.size() != f.x.size() || f.z.size() != f.x.size() || f.w.size() != f.x.size()) {
-        throw ConfigError("trace '" + path +
-                          "': a filament snapshot has columns of unequal length");
-      }
-      run.trace.snapshots.push_back(std::move(f));
+    read_steps(doc.at("steps"), format, path, run);
+    if (format == 1) {
+      read_snapshots_1(doc.at("snapshots"), path, run.trace);
+    } else {
+      read_snapshots_2(doc.at("snapshots"), doc.at("snapshot_encoding"), path, run.trace);
     }
     if (doc.contains("wind_grid")) {
       const json& g = doc.at("wind_grid");

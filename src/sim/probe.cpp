@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "plumetrace/agent/sensors.hpp"
 #include "plumetrace/env/environment.hpp"
@@ -116,6 +117,46 @@ MapGrid arena_grid(const Scenario& scenario, double dx, double dy) {
   for (double y = a.y_min + dy / 2; y < a.y_max; y += dy) grid.y.push_back(y);
   grid.z = scenario.odor.height;
   return grid;
+}
+
+namespace {
+
+// the cells [first, last] of ascending centres c whose centre may lie within r of v
+std::pair<std::size_t, std::size_t> cells_near(const std::vector<double>& c, double v, double r) {
+  const auto first = std::lower_bound(c.begin(), c.end(), v - r);
+  const auto last = std::upper_bound(first, c.end(), v + r);
+  return {static_cast<std::size_t>(first - c.begin()), static_cast<std::size_t>(last - c.begin())};
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> detection_mask(const Scenario& scenario, const FilamentSnapshot& snapshot,
+                                         const MapGrid& grid) {
+  const std::size_t nx = grid.x.size(), ny = grid.y.size();
+  const double threshold = scenario.odor.threshold;
+  const double eps = 1e-9 * threshold;
+  std::vector<double> c(nx * ny, 0.0);
+  // why: each filament adds its kernel to the cells it reaches, rather than each cell summing
+  // every filament, since a filament reaches a few dozen cells of the thousands
+  for (std::size_t k = 0; k < snapshot.x.size(); ++k) {
+    const double w = snapshot.w[k], dz = grid.z - snapshot.z[k];
+    // why: the reach's own rounding is covered by a relative margin far above it
+    const double r = kernel_reach(scenario.plume, w, eps) * (1.0 + 1e-9);
+    if (!(r > std::abs(dz))) continue;
+    const double r_xy = std::sqrt(r * r - dz * dz);
+    const auto [i0, i1] = cells_near(grid.x, snapshot.x[k], r_xy);
+    const auto [j0, j1] = cells_near(grid.y, snapshot.y[k], r_xy);
+    for (std::size_t j = j0; j < j1; ++j) {
+      const double dy = grid.y[j] - snapshot.y[k];
+      for (std::size_t i = i0; i < i1; ++i) {
+        const double dx = grid.x[i] - snapshot.x[k];
+        c[j * nx + i] += kernel_value(scenario.plume, w, dx * dx + dy * dy + dz * dz);
+      }
+    }
+  }
+  std::vector<std::uint8_t> mask(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) mask[i] = perceives_odor(scenario.odor, c[i]) ? 1 : 0;
+  return mask;
 }
 
 std::vector<std::vector<double>> detection_map(const Scenario& scenario, const MapGrid& grid,

@@ -46,6 +46,10 @@ void TraceRecorder::operator()(const World& world) {
   row.concentration = world.concentration();
   row.wind_samples = world.time() > 0.0 ? sensor.samples() : 0;
   row.wind_body = sensor.last_sample();
+  // why: at the sensor's height, where the wind sensor and the trace's wind grid sample it
+  const Vec3 wind =
+      world.environment().wind->velocity({row.pose.x, row.pose.y, world.scenario().odor.height});
+  row.true_wind = {wind.x, wind.y};
   trace_.steps.push_back(std::move(row));
 
   if (snapshot_every_ > 0 && calls_ % snapshot_every_ == 0) {

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "plumetrace/sim/probe.hpp"
+#include "plumetrace/sim/result.hpp"
 #include "plumetrace/sim/trace.hpp"
 
 namespace plumetrace::view {
@@ -33,13 +35,26 @@ std::vector<std::size_t> thin_evenly(std::size_t n, std::size_t max_count);
 /// odor at least `spacing` (m) from the previous detection kept.
 std::vector<std::size_t> detection_steps(const std::vector<TraceStep>& steps, double spacing);
 
-/// Standard base64 (RFC 4648, with padding) of bytes.
-std::string base64(const std::vector<std::uint8_t>& bytes);
-
 /// The viewer page (src/viewer_page.html, compiled in) with its data placeholder.
 std::string_view page_template();
 
-/// The colour (#rrggbb) of the i-th controller state in order of first appearance.
-std::string state_color(std::size_t index);
+/// The colours (#rrggbb) of controller states, given in order of first appearance: the report's
+/// colour of each state it names, the report's extra colours in turn for the others.
+std::vector<std::string> state_colors(const std::vector<std::string>& names);
+
+/// The report's colour (#rrggbb) of an outcome.
+std::string outcome_color(Outcome outcome);
+
+/// The smallest of 1, 2 and 5 times a power of ten that is at least `at_least` (> 0): the length
+/// of a scale bar or a tick step.
+double nice_length(double at_least);
+
+/// The grid of the detection region the viewer draws: square cells over the arena at the odor
+/// sensor's height, 5 cm on a side (coarser on arenas over 40 m).
+MapGrid detection_grid(const Scenario& scenario);
+
+/// A mask as run lengths: cells off, then on, then off and so on, in order; the run of cells off
+/// after the last cell on is left out (an empty list: none on).
+std::vector<std::size_t> mask_runs(const std::vector<std::uint8_t>& mask);
 
 }  // namespace plumetrace::view

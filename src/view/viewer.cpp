@@ -8,9 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "plumetrace/core/config.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/env/wind.hpp"
 #include "plumetrace/io/json_util.hpp"
+#include "plumetrace/sim/probe.hpp"
 #include "view_data.hpp"
 
 namespace plumetrace {
@@ -126,48 +128,100 @@ std::vector<std::size_t> detection_steps(const std::vector<TraceStep>& steps, do
   return kept;
 }
 
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static constexpr char kDigits[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::uint32_t b0 = bytes[i];
-    const std::uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
-    const std::uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-    const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
-    out += kDigits[(v >> 18) & 63];
-    out += kDigits[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+std::vector<std::string> state_colors(const std::vector<std::string>& names) {
+  // why: the report's colours (python/plumetrace/report/figures.py, STATE_COLORS and
+  // EXTRA_STATE_COLORS; python/tests/test_viewer_colors.py checks that they agree): moving
+  // upwind in the plume is blue, searching orange or red; other states take the extras in turn
+  static const std::map<std::string, std::string, std::less<>> kByName = {
+      {"upwind", "#1f77b4"}, {"surge", "#1f77b4"}, {"crosswind", "#ff7f0e"},
+      {"spiral", "#ff7f0e"}, {"cast1", "#ff7f0e"}, {"cast2", "#d62728"}};
+  static const char* const kExtra[] = {"#2ca02c", "#9467bd", "#8c564b",
+                                       "#e377c2", "#17becf", "#bcbd22"};
+  std::vector<std::string> colors;
+  std::size_t extra = 0;
+  for (const auto& name : names) {
+    const auto known = kByName.find(name);
+    colors.push_back(known != kByName.end() ? known->second
+                                            : kExtra[extra++ % (sizeof kExtra / sizeof *kExtra)]);
   }
-  return out;
+  return colors;
 }
 
-std::string state_color(std::size_t index) {
-  // why: Tableau 10 without its blue (the plume) and red (the robot), so layers stay apart
-  static const char* const kPalette[] = {"#f28e2b", "#59a14f", "#b07aa1", "#9c755f",
-                                         "#edc948", "#76b7b2", "#ff9da7", "#bab0ac"};
-  return kPalette[index % (sizeof kPalette / sizeof kPalette[0])];
+std::string outcome_color(Outcome outcome) {
+  // why: the report's OUTCOME_COLORS (python/plumetrace/report/figures.py)
+  switch (outcome) {
+    case Outcome::kSuccess:
+      return "#4c9a4c";
+    case Outcome::kWall:
+      return "#d9534f";
+    case Outcome::kTimeout:
+      return "#f0ad4e";
+    case Outcome::kGaveUp:
+      return "#8c6bb1";
+    case Outcome::kRunning:
+      break;
+  }
+  return "#333333";
+}
+
+double nice_length(double at_least) {
+  const double decade = std::pow(10.0, std::floor(std::log10(at_least)));
+  for (const double k : {1.0, 2.0, 5.0, 10.0}) {
+    if (k * decade >= at_least) return k * decade;
+  }
+  return 10.0 * decade;
+}
+
+MapGrid detection_grid(const Scenario& scenario) {
+  const auto& a = scenario.arena;
+  // why: 5 cm, a sixth of the region's narrowest parts; coarser on arenas over 40 m, so that a
+  // snapshot's grid stays under about 10^5 cells
+  const double cell = std::max(0.05, std::max(a.x_max - a.x_min, a.y_max - a.y_min) / 800.0);
+  return arena_grid(scenario, cell, cell);
+}
+
+std::vector<std::size_t> mask_runs(const std::vector<std::uint8_t>& mask) {
+  std::vector<std::size_t> runs;
+  std::size_t i = 0;
+  while (i < mask.size()) {
+    std::size_t off = 0, on = 0;
+    while (i < mask.size() && !mask[i]) ++off, ++i;
+    while (i < mask.size() && mask[i]) ++on, ++i;
+    if (on == 0) break;
+    runs.push_back(off);
+    runs.push_back(on);
+  }
+  return runs;
 }
 
 }  // namespace view
 
 namespace {
 
+using detail::Quantizer;
 using nlohmann::json;
 
-// the colours every view shares (the page reads them from its data)
-constexpr const char* kPlumeColor = "#4e79a7";
-constexpr const char* kRobotColor = "#e15759";
+// the colours every view shares (the page reads them from its data). why: the plume is grey and
+// the robot dark, as in the report's figures, so that the states' blue, orange and red stand
+// out; the detection region is gold, a colour no state takes
+constexpr const char* kPlumeColor = "#8c8c8c";
+constexpr const char* kRegionColor = "#f5d000";
+constexpr const char* kRobotColor = "#333333";
 constexpr const char* kDetectionColor = "#000000";
 constexpr const char* kWindColor = "#555555";
 constexpr const char* kTrueWindColor = "#aaaaaa";
 constexpr const char* kWindFieldColor = "#c4c4c4";
+// fill opacity of the detection region
+constexpr double kRegionOpacity = 0.6;
 // wind arrows: metres drawn per m/s
 constexpr double kWindArrowScale = 0.25;
 
 double rounded(double v, double unit) { return std::round(v / unit) * unit; }
+
+// a rounded number, or null where it is not finite (an unrecorded true wind)
+json rounded_or_null(double v, double unit) {
+  return std::isfinite(v) ? json(rounded(v, unit)) : json(nullptr);
+}
 
 // states in order of first appearance
 std::vector<std::string> state_names(const Trace& trace) {
@@ -188,31 +242,16 @@ struct WindSample {
   Vec2 measured, truth;
 };
 
-// the true wind where the robot sampled it, as the trace recorded it. why: read from the trace's
-// scenario, not from a wind field rebuilt here (a second copy of the run's wind); the one model,
-// constant, blows its recorded velocity everywhere and always. A wind model that varies must
-// record its truth in the trace, and the switch (-Wswitch) names this place when one is added.
-Vec3 recorded_true_wind(const WindParams& wind) {
-  switch (wind.model) {
-    case WindModel::kConstant:
-      return wind.velocity;
-    case WindModel::kMeander:
-      // why: the trace does not record the meandering field yet (issue 15, the viewer's part):
-      // its mean is drawn, which the local wind departs from by the meander
-      return wind.velocity;
-  }
-  return {NAN, NAN, NAN};
-}
-
+// the true wind is the trace's, recorded at the robot at every step (NaN where the trace could
+// not know it: format 1 in a wind that varies)
 std::vector<WindSample> wind_samples(const RecordedRun& run) {
-  const Vec3 v = recorded_true_wind(run.scenario.wind);
   std::vector<WindSample> out;
   for (const auto& s : run.trace.steps) {
     if (s.wind_samples <= 0) continue;
     const double c = std::cos(s.pose.heading), sn = std::sin(s.pose.heading);
     const Vec2 measured{c * s.wind_body.x - sn * s.wind_body.y,
                         sn * s.wind_body.x + c * s.wind_body.y};
-    out.push_back({s.time, s.pose.x, s.pose.y, measured, {v.x, v.y}});
+    out.push_back({s.time, s.pose.x, s.pose.y, measured, s.true_wind});
   }
   return out;
 }
@@ -250,26 +289,35 @@ ShadeRange shade_range(const RecordedRun& run, const std::vector<std::size_t>& s
   return {std::min(a, b), std::max(a, b)};
 }
 
-// quantises values into 16 bits over their range: v = origin + q * unit
-struct Quantizer {
-  double origin = 0.0, unit = 1.0;
-  Quantizer(double lo, double hi, double finest) : origin(lo) {
-    unit = std::max(finest, (hi - lo) / 65535.0);
+// a column of numbers in [lo, hi] to steps of `finest`, each in as few bits as its range needs
+// (at most 16, with coarser steps where 16 bits of `finest` do not span it), packed into bytes
+// from the lowest bit up; value = origin + unit * step
+json column_json(double lo, double hi, double finest, const std::vector<double>& values) {
+  int bits = 1;
+  while (bits < 16 && (hi - lo) / finest > static_cast<double>((1 << bits) - 1)) ++bits;
+  const double top = static_cast<double>((1 << bits) - 1);
+  const double unit = std::max(finest, (hi - lo) / top);
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve((values.size() * static_cast<std::size_t>(bits) + 7) / 8);
+  std::uint32_t pending = 0;
+  int held = 0;
+  for (const double v : values) {
+    pending |= static_cast<std::uint32_t>(std::clamp(std::round((v - lo) / unit), 0.0, top))
+               << held;
+    for (held += bits; held >= 8; held -= 8, pending >>= 8) {
+      bytes.push_back(static_cast<std::uint8_t>(pending & 0xff));
+    }
   }
-  std::uint16_t operator()(double v) const {
-    return static_cast<std::uint16_t>(std::clamp(std::round((v - origin) / unit), 0.0, 65535.0));
-  }
-};
-
-void put_u16(std::vector<std::uint8_t>& out, std::uint16_t v) {
-  out.push_back(static_cast<std::uint8_t>(v & 0xff));
-  out.push_back(static_cast<std::uint8_t>(v >> 8));
+  if (held > 0) bytes.push_back(static_cast<std::uint8_t>(pending & 0xff));
+  return {{"origin", lo}, {"unit", unit}, {"bits", bits}, {"data", detail::base64(bytes)}};
 }
 
-// the true wind at the trace's grid for each kept snapshot (none for a trace without one)
+// the true wind at the trace's grid for each kept snapshot (none for a trace without one); null
+// for a snapshot whose field is the one before it (a steady wind's, after the first)
 json wind_field_json(const RecordedRun& run, const std::vector<std::size_t>& kept) {
   const WindGrid& g = run.trace.wind_grid;
   json u = json::array(), v = json::array();
+  json last_u, last_v;
   for (const std::size_t i : kept) {
     const auto& s = run.trace.snapshots[i];
     json su = json::array(), sv = json::array();
@@ -277,51 +325,67 @@ json wind_field_json(const RecordedRun& run, const std::vector<std::size_t>& kep
       su.push_back(rounded(s.wind_x[k], 1e-3));
       sv.push_back(rounded(s.wind_y[k], 1e-3));
     }
-    u.push_back(std::move(su));
-    v.push_back(std::move(sv));
+    const bool same = su == last_u && sv == last_v;
+    last_u = su, last_v = sv;
+    u.push_back(same ? json(nullptr) : std::move(su));
+    v.push_back(same ? json(nullptr) : std::move(sv));
   }
   return {{"x0", g.x0}, {"dx", g.dx}, {"nx", g.nx}, {"y0", g.y0},
           {"dy", g.dy}, {"ny", g.ny}, {"u", u},     {"v", v}};
 }
 
+// where odor was perceivable at each kept snapshot: the grid and each snapshot's cells as runs
+json detection_json(const RecordedRun& run, const std::vector<std::size_t>& kept) {
+  const MapGrid grid = view::detection_grid(run.scenario);
+  json runs = json::array();
+  for (const std::size_t i : kept) {
+    runs.push_back(view::mask_runs(detection_mask(run.scenario, run.trace.snapshots[i], grid)));
+  }
+  const auto step = [](const std::vector<double>& c) { return c.size() > 1 ? c[1] - c[0] : 0.0; };
+  return {{"x0", grid.x.empty() ? 0.0 : grid.x.front()},
+          {"dx", step(grid.x)},
+          {"nx", grid.x.size()},
+          {"y0", grid.y.empty() ? 0.0 : grid.y.front()},
+          {"dy", step(grid.y)},
+          {"ny", grid.y.size()},
+          {"z", grid.z},
+          {"threshold", run.scenario.odor.threshold},
+          {"runs", runs}};
+}
+
 json snapshots_json(const RecordedRun& run, const std::vector<std::size_t>& kept,
                     const ShadeRange& range) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (const std::size_t i : kept) {
-    const auto& s = run.trace.snapshots[i];
-    for (std::size_t k = 0; k < s.x.size(); ++k) {
-      const double v[3] = {s.x[k], s.y[k], s.w[k]};
-      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    if (!(lo[c] <= hi[c])) lo[c] = hi[c] = 0.0;
-  }
-  // why: 1 mm positions and 0.01 mm widths are below a pixel at any sensible zoom
-  const Quantizer qx(lo[0], hi[0], 1e-3), qy(lo[1], hi[1], 1e-3), qw(lo[2], hi[2], 1e-5);
-  std::vector<std::uint8_t> xs, ys, ws, shades;
+  std::vector<double> xs, ys, ws;
   json times = json::array(), counts = json::array();
   for (const std::size_t i : kept) {
     const auto& s = run.trace.snapshots[i];
     times.push_back(rounded(s.time, 1e-3));
     counts.push_back(s.x.size());
     for (std::size_t k = 0; k < s.x.size(); ++k) {
-      put_u16(xs, qx(s.x[k]));
-      put_u16(ys, qy(s.y[k]));
-      put_u16(ws, qw(s.w[k]));
-      shades.push_back(
-          static_cast<std::uint8_t>(std::lround(255.0 * range.shade(log_peak(run, s.w[k])))));
+      const double v[3] = {s.x[k], s.y[k], s.w[k]};
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
+      xs.push_back(s.x[k]);
+      ys.push_back(s.y[k]);
+      ws.push_back(s.w[k]);
     }
   }
+  for (int c = 0; c < 3; ++c) {
+    if (!(lo[c] <= hi[c])) lo[c] = hi[c] = 0.0;
+  }
+  // why: 1 mm positions and 0.01 mm widths are below a pixel at any sensible zoom. A filament's
+  // shade is its peak on a log scale, and every kernel's peak is a constant over w^3
+  // (Viewer.EveryKernelsPeakFallsAsTheWidthCubed), so the page finds it from the width
   return {{"time", times},
           {"count", counts},
-          {"x", {{"origin", qx.origin}, {"unit", qx.unit}, {"data", view::base64(xs)}}},
-          {"y", {{"origin", qy.origin}, {"unit", qy.unit}, {"data", view::base64(ys)}}},
-          {"w", {{"origin", qw.origin}, {"unit", qw.unit}, {"data", view::base64(ws)}}},
-          {"shade", view::base64(shades)},
+          {"x", column_json(lo[0], hi[0], 1e-3, xs)},
+          {"y", column_json(lo[1], hi[1], 1e-3, ys)},
+          {"w", column_json(lo[2], hi[2], 1e-5, ws)},
+          {"shade", {{"w_min", lo[2]}, {"w_max", hi[2]}}},
           {"peak_lo", std::pow(10.0, range.lo)},
           {"peak_hi", std::pow(10.0, range.hi)},
-          {"wind_field", wind_field_json(run, kept)}};
+          {"wind_field", wind_field_json(run, kept)},
+          {"detection", detection_json(run, kept)}};
 }
 
 // everything the page draws, thinned as the options say
@@ -330,16 +394,26 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
   const auto& steps = run.trace.steps;
   const auto names = state_names(run.trace);
 
-  json style{{"plume", kPlumeColor},         {"robot", kRobotColor},
-             {"detection", kDetectionColor}, {"wind", kWindColor},
-             {"true_wind", kTrueWindColor},  {"wind_arrow_scale", kWindArrowScale},
-             {"wind_field", kWindFieldColor},
-             {"states", json::array()}};
-  for (std::size_t i = 0; i < names.size(); ++i) style["states"].push_back(view::state_color(i));
+  json outcomes = json::object();
+  for (std::size_t i = 1; i < kOutcomeNames.size(); ++i) {
+    outcomes[std::string(kOutcomeNames[i])] = view::outcome_color(static_cast<Outcome>(i));
+  }
+  const json style{{"plume", kPlumeColor},
+                   {"region", kRegionColor},
+                   {"region_opacity", kRegionOpacity},
+                   {"robot", kRobotColor},
+                   {"detection", kDetectionColor},
+                   {"wind", kWindColor},
+                   {"true_wind", kTrueWindColor},
+                   {"wind_arrow_scale", kWindArrowScale},
+                   {"wind_field", kWindFieldColor},
+                   {"states", view::state_colors(names)},
+                   {"outcomes", outcomes}};
 
-  json frames{{"step", json::array()}, {"time", json::array()},          {"x", json::array()},
-              {"y", json::array()},    {"heading", json::array()},       {"state", json::array()},
-              {"d_t", json::array()},  {"concentration", json::array()}, {"odor", json::array()}};
+  json frames{{"step", json::array()},   {"time", json::array()},          {"x", json::array()},
+              {"y", json::array()},      {"heading", json::array()},       {"state", json::array()},
+              {"d_t", json::array()},    {"concentration", json::array()}, {"odor", json::array()},
+              {"true_u", json::array()}, {"true_v", json::array()}};
   for (const std::size_t i : view::frame_steps(steps, options.max_frames)) {
     const TraceStep& s = steps[i];
     frames["step"].push_back(i);
@@ -351,6 +425,8 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
     frames["d_t"].push_back(rounded(s.odometer, 1e-5));
     frames["concentration"].push_back(s.concentration);
     frames["odor"].push_back(s.odor ? 1 : 0);
+    frames["true_u"].push_back(rounded_or_null(s.true_wind.x, 1e-5));
+    frames["true_v"].push_back(rounded_or_null(s.true_wind.y, 1e-5));
   }
 
   json path{{"time", json::array()},
@@ -380,8 +456,8 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
     wind["y"].push_back(rounded(w.y, 1e-5));
     wind["u"].push_back(rounded(w.measured.x, 1e-5));
     wind["v"].push_back(rounded(w.measured.y, 1e-5));
-    wind["true_u"].push_back(rounded(w.truth.x, 1e-5));
-    wind["true_v"].push_back(rounded(w.truth.y, 1e-5));
+    wind["true_u"].push_back(rounded_or_null(w.truth.x, 1e-5));
+    wind["true_v"].push_back(rounded_or_null(w.truth.y, 1e-5));
   }
 
   const auto kept_snaps = view::thin_evenly(run.trace.snapshots.size(), options.max_snapshots);
@@ -454,6 +530,20 @@ std::string num(double v, int digits = 2) {
   return buf;
 }
 
+// a number in at most 6 significant digits, without trailing zeros
+std::string short_number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// a tick label: as many decimals as the step needs
+std::string tick_label(double v, double step) {
+  const int digits = step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
+  const std::string s = num(v, digits);
+  return s == "-0" ? "0" : s;
+}
+
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -493,16 +583,71 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   const Scenario& sc = run.scenario;
   const auto& steps = run.trace.steps;
   const auto names = state_names(run.trace);
+  const auto colors = view::state_colors(names);
   const double width_m = sc.arena.x_max - sc.arena.x_min;
   const double height_m = sc.arena.y_max - sc.arena.y_min;
-  const double scale = std::min(60.0, 1100.0 / width_m);  // px per m
-  const double margin = 20.0, top = 40.0;
-  const double legend_h = 48.0;
-  const double w_px = width_m * scale + 2 * margin;
-  const double h_px = height_m * scale + top + margin + legend_h;
-  const auto px = [&](double x) { return num(margin + (x - sc.arena.x_min) * scale); };
+  // why: the figure, axes and legend fit a 900 px window, at most 60 px per m
+  constexpr double kMaxWidth = 900.0;
+  const double left = 52.0, right = 16.0, top = 40.0;
+  const double scale = std::min(60.0, (kMaxWidth - left - right) / width_m);  // px per m
+  const double w_px = std::ceil(left + width_m * scale + right);
+  const double arena_bottom = top + height_m * scale;
+  const auto px = [&](double x) { return num(left + (x - sc.arena.x_min) * scale); };
   const auto py = [&](double y) { return num(top + (sc.arena.y_max - y) * scale); };
   const auto len = [&](double m) { return num(m * scale); };
+
+  // the legend's entries, laid out in rows within the figure's width
+  struct Entry {
+    std::string swatch, label;
+  };
+  std::vector<Entry> entries;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    entries.push_back({"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + colors[i] +
+                           "\" stroke-width=\"3\"/>",
+                       names[i].empty() ? "(no state)" : names[i]});
+  }
+  if (!run.trace.snapshots.empty()) {
+    entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +
+                           "\" fill-opacity=\"0.4\"/>",
+                       "filament (radius = width)"});
+    entries.push_back(
+        {std::string("<rect x=\"0\" y=\"-6\" width=\"14\" height=\"12\" fill=\"") + kRegionColor +
+             "\" fill-opacity=\"" + num(kRegionOpacity) + "\"/>",
+         "odor perceivable (concentration \u2265 " + short_number(sc.odor.threshold) + ")"});
+  }
+  entries.push_back(
+      {std::string("<circle cx=\"7\" cy=\"0\" r=\"2.5\" fill-opacity=\"0.6\" fill=\"") +
+           kDetectionColor + "\"/>",
+       "odor detected by the robot"});
+  entries.push_back(
+      {"<circle cx=\"7\" cy=\"0\" r=\"5\" fill=\"#bbbbbb\" stroke=\"#333333\"/>", "source"});
+  entries.push_back(
+      {"<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"#444444\" "
+       "stroke-dasharray=\"4 3\"/>",
+       "success radius"});
+  entries.push_back({std::string("<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"") +
+                         kWindColor + "\" marker-end=\"url(#arrow)\"/>",
+                     "wind sample (measured)"});
+  entries.push_back(
+      {"<circle cx=\"7\" cy=\"0\" r=\"4\" fill=\"none\" stroke=\"#333333\"/>", "start"});
+  entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kRobotColor +
+                         "\" stroke=\"#ffffff\"/>",
+                     "robot at the end"});
+  // why: about 6.5 px a character in a 12 px sans-serif
+  const auto entry_width = [](const Entry& e) {
+    return 30.0 + 6.5 * static_cast<double>(e.label.size());
+  };
+  const double legend_top = arena_bottom + 62.0, row_h = 20.0;
+  std::vector<std::pair<double, double>> at;  // each entry's x and y
+  {
+    double lx = left, ly = legend_top;
+    for (const auto& e : entries) {
+      if (lx > left && lx + entry_width(e) > w_px - right) lx = left, ly += row_h;
+      at.push_back({lx, ly});
+      lx += entry_width(e);
+    }
+  }
+  const double h_px = std::ceil(at.back().second + 16.0);
 
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(w_px, 0) << "\" height=\""
@@ -511,30 +656,95 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
       << "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
          "markerWidth=\"5\" markerHeight=\"5\" orient=\"auto-start-reverse\">"
          "<path d=\"M0,0 L10,5 L0,10 z\" fill=\""
-      << kWindColor << "\"/></marker></defs>\n"
+      << kWindColor << "\"/></marker>"
+      << "<clipPath id=\"arena-clip\"><rect x=\"" << px(sc.arena.x_min) << "\" y=\""
+      << py(sc.arena.y_max) << "\" width=\"" << len(width_m) << "\" height=\"" << len(height_m)
+      << "\"/></clipPath></defs>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n"
-      << "<text x=\"" << num(margin) << "\" y=\"24\">" << xml_escape(run_caption(run))
-      << "</text>\n";
+      << "<text x=\"" << num(left) << "\" y=\"24\">" << xml_escape(run_caption(run)) << "</text>\n";
 
-  // arena floor and walls
-  svg << "<rect id=\"arena\" x=\"" << px(sc.arena.x_min) << "\" y=\"" << py(sc.arena.y_max)
+  // arena floor
+  svg << "<rect id=\"floor\" x=\"" << px(sc.arena.x_min) << "\" y=\"" << py(sc.arena.y_max)
       << "\" width=\"" << len(width_m) << "\" height=\"" << len(height_m)
-      << "\" fill=\"#fafafa\" stroke=\"#333333\" stroke-width=\"3\"/>\n";
+      << "\" fill=\"#fafafa\"/>\n";
 
-  // filaments at the figure's time
+  // filaments and the detection region at the figure's time, clipped to the arena
   if (!run.trace.snapshots.empty()) {
     const double t = options.figure_time < 0.0 ? INFINITY : options.figure_time;
     const std::size_t i = snapshot_at(run.trace, t);
     const ShadeRange range = shade_range(run, {i});
     const auto& s = run.trace.snapshots[i];
-    svg << "<g id=\"plume\" fill=\"" << kPlumeColor << "\">\n";
+    svg << "<g id=\"plume\" fill=\"" << kPlumeColor << "\" clip-path=\"url(#arena-clip)\">\n";
     for (std::size_t k = 0; k < s.x.size(); ++k) {
       svg << "<circle cx=\"" << px(s.x[k]) << "\" cy=\"" << py(s.y[k]) << "\" r=\"" << len(s.w[k])
           << "\" fill-opacity=\"" << num(0.05 + 0.2 * range.shade(log_peak(run, s.w[k])), 3)
           << "\"/>\n";
     }
     svg << "</g>\n";
+    // the region as one path: a rectangle per run of cells in a row
+    const MapGrid grid = view::detection_grid(sc);
+    const auto mask = detection_mask(sc, s, grid);
+    const std::size_t nx = grid.x.size();
+    const double cx = nx > 1 ? grid.x[1] - grid.x[0] : 0.0;
+    const double cy = grid.y.size() > 1 ? grid.y[1] - grid.y[0] : 0.0;
+    svg << "<path id=\"region\" fill=\"" << kRegionColor << "\" fill-opacity=\""
+        << num(kRegionOpacity) << "\" clip-path=\"url(#arena-clip)\" d=\"";
+    for (std::size_t j = 0; j < grid.y.size(); ++j) {
+      for (std::size_t a = 0; a < nx;) {
+        if (!mask[j * nx + a]) {
+          ++a;
+          continue;
+        }
+        std::size_t b = a;
+        while (b < nx && mask[j * nx + b]) ++b;
+        svg << "M" << px(grid.x[a] - cx / 2) << "," << py(grid.y[j] + cy / 2) << "h"
+            << len(static_cast<double>(b - a) * cx) << "v" << len(cy) << "h-"
+            << len(static_cast<double>(b - a) * cx) << "z";
+        a = b;
+      }
+    }
+    svg << "\"/>\n";
   }
+
+  // walls
+  svg << "<rect id=\"arena\" x=\"" << px(sc.arena.x_min) << "\" y=\"" << py(sc.arena.y_max)
+      << "\" width=\"" << len(width_m) << "\" height=\"" << len(height_m)
+      << "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"3\"/>\n";
+
+  // axes: ticks in metres every 1, 2 or 5 times a power of ten, at least 40 px apart
+  const double step = view::nice_length(40.0 / scale);
+  svg << "<g id=\"axes\" stroke=\"#333333\" fill=\"#333333\">\n";
+  for (double x = std::ceil(sc.arena.x_min / step - 1e-9) * step; x <= sc.arena.x_max + 1e-9;
+       x += step) {
+    svg << "<line x1=\"" << px(x) << "\" y1=\"" << num(arena_bottom + 2) << "\" x2=\"" << px(x)
+        << "\" y2=\"" << num(arena_bottom + 8) << "\"/><text x=\"" << px(x) << "\" y=\""
+        << num(arena_bottom + 21) << "\" text-anchor=\"middle\" stroke=\"none\">"
+        << tick_label(x, step) << "</text>\n";
+  }
+  for (double y = std::ceil(sc.arena.y_min / step - 1e-9) * step; y <= sc.arena.y_max + 1e-9;
+       y += step) {
+    svg << "<line x1=\"" << num(left - 8) << "\" y1=\"" << py(y) << "\" x2=\"" << num(left - 2)
+        << "\" y2=\"" << py(y) << "\"/><text x=\"" << num(left - 11) << "\" y=\""
+        << num(top + (sc.arena.y_max - y) * scale + 4) << "\" text-anchor=\"end\" stroke=\"none\">"
+        << tick_label(y, step) << "</text>\n";
+  }
+  svg << "<text x=\"" << num(left + width_m * scale / 2) << "\" y=\"" << num(arena_bottom + 38)
+      << "\" text-anchor=\"middle\" stroke=\"none\">x (m), wind along +x</text>\n"
+      << "<text transform=\"translate(14," << num(top + height_m * scale / 2)
+      << ") rotate(-90)\" text-anchor=\"middle\" stroke=\"none\">y (m)</text>\n"
+      << "</g>\n";
+  // scale bar, under the arena's right end
+  const double bar = view::nice_length(width_m / 10.0);
+  const double bar_right = left + width_m * scale, bar_y = arena_bottom + 34;
+  svg << "<g id=\"scale-bar\" stroke=\"#000000\" stroke-width=\"2\">"
+      << "<line x1=\"" << num(bar_right - bar * scale) << "\" y1=\"" << num(bar_y) << "\" x2=\""
+      << num(bar_right) << "\" y2=\"" << num(bar_y) << "\"/>"
+      << "<line x1=\"" << num(bar_right - bar * scale) << "\" y1=\"" << num(bar_y - 4) << "\" x2=\""
+      << num(bar_right - bar * scale) << "\" y2=\"" << num(bar_y + 4) << "\"/>"
+      << "<line x1=\"" << num(bar_right) << "\" y1=\"" << num(bar_y - 4) << "\" x2=\""
+      << num(bar_right) << "\" y2=\"" << num(bar_y + 4) << "\"/>"
+      << "<text x=\"" << num(bar_right - bar * scale - 6) << "\" y=\"" << num(bar_y + 4)
+      << "\" text-anchor=\"end\" stroke=\"none\">" << short_number(bar) << " m</text></g>\n";
 
   // source and success radius
   svg << "<circle id=\"source\" cx=\"" << px(sc.source.center.x) << "\" cy=\""
@@ -557,7 +767,7 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   svg << "<g id=\"path\" fill=\"none\" stroke-width=\"2\" stroke-linejoin=\"round\">\n";
   for (std::size_t j = 1; j < vertices.size();) {
     const std::string& state = steps[vertices[j]].state;
-    svg << "<polyline stroke=\"" << view::state_color(state_index(names, state)) << "\" points=\""
+    svg << "<polyline stroke=\"" << colors[state_index(names, state)] << "\" points=\""
         << px(steps[vertices[j - 1]].pose.x) << "," << py(steps[vertices[j - 1]].pose.y);
     for (; j < vertices.size() && steps[vertices[j]].state == state; ++j) {
       svg << " " << px(steps[vertices[j]].pose.x) << "," << py(steps[vertices[j]].pose.y);
@@ -579,49 +789,24 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
     const Pose& start = steps.front().pose;
     const Pose& end = steps.back().pose;
     const double r = std::max(4.0, sc.robot.radius * scale);
-    const double ex = margin + (end.x - sc.arena.x_min) * scale;
+    const double ex = left + (end.x - sc.arena.x_min) * scale;
     const double ey = top + (sc.arena.y_max - end.y) * scale;
     svg << "<circle id=\"start\" cx=\"" << px(start.x) << "\" cy=\"" << py(start.y)
         << "\" r=\"4\" fill=\"none\" stroke=\"#333333\"/>\n"
         << "<g id=\"robot\"><circle cx=\"" << num(ex) << "\" cy=\"" << num(ey) << "\" r=\""
-        << num(r) << "\" fill=\"" << kRobotColor << "\" stroke=\"#222222\"/>"
+        << num(r) << "\" fill=\"" << kRobotColor << "\" stroke=\"#ffffff\"/>"
         << "<line x1=\"" << num(ex) << "\" y1=\"" << num(ey) << "\" x2=\""
         << num(ex + 1.6 * r * std::cos(end.heading)) << "\" y2=\""
-        << num(ey - 1.6 * r * std::sin(end.heading)) << "\" stroke=\"#222222\" "
-        << "stroke-width=\"2\"/></g>\n";
+        << num(ey - 1.6 * r * std::sin(end.heading)) << "\" stroke=\"" << kRobotColor
+        << "\" stroke-width=\"2\"/></g>\n";
   }
 
-  // legend
-  double lx = margin;
-  const double ly = top + height_m * scale + margin + 14.0;
   svg << "<g id=\"legend\">\n";
-  const auto entry = [&](const std::string& swatch, const std::string& label) {
-    svg << "<g transform=\"translate(" << num(lx) << "," << num(ly) << ")\">" << swatch
-        << "<text x=\"18\" y=\"4\">" << xml_escape(label) << "</text></g>\n";
-    lx += 30.0 + 7.0 * static_cast<double>(label.size());
-  };
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    entry("<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + view::state_color(i) +
-              "\" stroke-width=\"3\"/>",
-          names[i].empty() ? "(no state)" : names[i]);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    svg << "<g transform=\"translate(" << num(at[i].first) << "," << num(at[i].second) << ")\">"
+        << entries[i].swatch << "<text x=\"18\" y=\"4\">" << xml_escape(entries[i].label)
+        << "</text></g>\n";
   }
-  entry(std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +
-            "\" fill-opacity=\"0.4\"/>",
-        "filament (radius = width)");
-  entry(std::string("<circle cx=\"7\" cy=\"0\" r=\"2.5\" fill-opacity=\"0.6\" fill=\"") +
-            kDetectionColor + "\"/>",
-        "odor detected (dark edge of the path)");
-  entry("<circle cx=\"7\" cy=\"0\" r=\"5\" fill=\"#bbbbbb\" stroke=\"#333333\"/>", "source");
-  entry(std::string("<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"") + kWindColor +
-            "\" marker-end=\"url(#arrow)\"/>",
-        "wind sample");
-  entry(std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kRobotColor +
-            "\" stroke=\"#222222\"/>",
-        "robot");
-  entry(
-      "<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"none\" stroke=\"#444444\" "
-      "stroke-dasharray=\"4 3\"/>",
-      "success radius");
   svg << "</g>\n</svg>\n";
   return svg.str();
 }

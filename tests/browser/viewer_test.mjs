@@ -6,11 +6,12 @@ import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join } from "node:path";
-import { pathToFileURL } from "node:url";
+import { dirname, join } from "node:path";
+import { fileURLToPath, pathToFileURL } from "node:url";
 import { inflateSync } from "node:zlib";
 
 const cli = process.env.PLUMETRACE_CLI;
+const root = join(dirname(fileURLToPath(import.meta.url)), "..", "..");
 const browserPath = process.env.PLUMETRACE_CHROMIUM || "/usr/bin/chromium";
 
 // ---- a PNG decoder (8-bit RGB or RGBA, not interlaced: what chromium's screenshots are)
@@ -74,7 +75,10 @@ function count(img, box, pred) {
   for (let y = y0; y < y1; ++y) for (let x = x0; x < x1; ++x) if (pred(img.pixel(x, y))) ++n;
   return n;
 }
-const bluish = (p) => p[2] > p[0] + 25 && p[2] > p[1] + 5;
+// the plume's grey (filaments of any shade over the floor), and the detection region's yellow
+const greyish = (p) => Math.max(...p) - Math.min(...p) < 14 && p[0] < 236 && p[0] > 90;
+const yellowish = (p) => p[0] > 200 && Math.abs(p[0] - p[1]) < 32 && p[2] < 125;
+const white = (p) => p[0] >= 250 && p[1] >= 250 && p[2] >= 250;
 
 // ---- the runs and the browser
 let dir, browser, chromium;
@@ -98,6 +102,13 @@ before(async () => {
   plumetrace("run", "--trace", "run.json", "--snapshot-interval", "0.25");
   plumetrace("view", "run.json", "-o", "run.html");
   plumetrace("view", "run.json", "-o", "run.svg");
+  // a wind at 18 degrees that carries the plume through the upper wall
+  plumetrace("run", "--set", "wind.vy=0.3", "--view", "clip.html");
+  plumetrace("run", "--set", "wind.vy=0.3", "--view", "clip.svg");
+  // a meandering wind: the wind at the robot turns as the run goes
+  plumetrace("run", join(root, "scenarios", "meander-strong.toml"), "--trace", "meander.json",
+             "--snapshot-interval", "1");
+  plumetrace("view", "meander.json", "-o", "meander.html");
   // a long run (37 500 steps): a tight spiral that never smells odor until the timeout
   plumetrace("run", "--algorithm", "surge-spiral", "--set", "surge_spiral.d_gap=0.02",
              "--set", "odor.threshold=1e15", "--view", "long.html");
@@ -113,8 +124,8 @@ after(async () => {
   if (dir) rmSync(dir, { recursive: true, force: true });
 });
 
-async function open(file) {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 720 } });
+async function open(file, viewport = { width: 1280, height: 720 }) {
+  const page = await browser.newPage({ viewport });
   page.on("console", (m) => { if (m.type() === "error") errors.push(`${file}: ${m.text()}`); });
   page.on("pageerror", (e) => errors.push(`${file}: ${e.message}`));
   // the page must not reach the network: anything but file: is recorded and refused
@@ -124,7 +135,8 @@ async function open(file) {
     offline.push(url);
     return route.abort();
   });
-  await page.goto(pathToFileURL(join(dir, file)).href);
+  const [name, hash] = file.split("#");
+  await page.goto(pathToFileURL(join(dir, name)).href + (hash === undefined ? "" : `#${hash}`));
   return page;
 }
 
@@ -207,19 +219,21 @@ test("a screenshot shows the robot, the plume and the trajectory", async () => {
   assert.ok(count(first, whole, onPath) < 20, "no trajectory at the first frame");
 
   await viewer(page, "setFrame(3000)");
+  // the true wind field's light grey arrows off, so that grey is the plume's
+  await page.locator("#layer-wind_field").click();
   const img = await shoot(page);
   // the robot: its colour fills the disc around where the page says it is
   const r = await viewer(page, "robotOnScreen()");
   const robot = { x0: r.x - r.radius, y0: r.y - r.radius, x1: r.x + r.radius, y1: r.y + r.radius };
   const red = count(img, robot, (p) => near(p, hex(style.robot), 40));
   assert.ok(red > 0.3 * r.radius * r.radius, `robot pixels ${red}`);
-  // the plume: bluish pixels between the source and 4 m downwind, along y = 0
-  const s = await viewer(page, "toScreen(1.5, 0.5)"), e = await viewer(page, "toScreen(5, -0.5)");
-  const plume = count(img, { x0: s.x, y0: s.y, x1: e.x, y1: e.y }, bluish);
+  // the plume: grey pixels between the source and 4 m downwind, along y = 0
+  const s = await viewer(page, "toScreen(1.5, 0.2)"), e = await viewer(page, "toScreen(5, -0.2)");
+  const plume = count(img, { x0: s.x, y0: s.y, x1: e.x, y1: e.y }, greyish);
   assert.ok(plume > 0.3 * (e.x - s.x) * (e.y - s.y), `plume pixels ${plume}`);
   // the plume is not everywhere: the arena's far corner has none
   const c0 = await viewer(page, "toScreen(1, 1.9)"), c1 = await viewer(page, "toScreen(4, 1.5)");
-  assert.ok(count(img, { x0: c0.x, y0: c0.y, x1: c1.x, y1: c1.y }, bluish) < 10, "no plume far off the axis");
+  assert.ok(count(img, { x0: c0.x, y0: c0.y, x1: c1.x, y1: c1.y }, greyish) < 10, "no plume far off the axis");
   // the trajectory: pixels in the state colours, many more than at release
   const path = count(img, whole, onPath);
   assert.ok(path > 400, `trajectory pixels ${path}`);
@@ -235,7 +249,8 @@ test("the static SVG figure draws the same layers", async () => {
   const style = JSON.parse(readFileSync(join(dir, "run.html"), "utf8").match(/<script id="plumetrace-data" type="application\/json">(.*?)<\/script>/s)[1]).style;
   const all = { x0: 0, y0: 0, x1: img.width, y1: img.height };
   assert.ok(count(img, all, (p) => near(p, hex(style.robot), 40)) > 20, "robot");
-  assert.ok(count(img, all, bluish) > 5000, "plume");
+  assert.ok(count(img, all, greyish) > 5000, "plume");
+  assert.ok(count(img, all, yellowish) > 50, "detection region");
   for (const c of style.states) assert.ok(count(img, all, (p) => near(p, hex(c), 30)) > 50, `trajectory in ${c}`);
   await page.close();
   assert.deepEqual(errors, []);
@@ -245,7 +260,7 @@ test("names from the run are shown as text, not markup", async () => {
   // a controller of the user's may name its states anything
   const trace = JSON.parse(readFileSync(join(dir, "run.json"), "utf8"));
   trace.result.algorithm = "<b id='injected'>mine</b>";
-  trace.steps.state = trace.steps.state.map((s) => (s === "upwind" ? "<!--<script><i id='state'>up</i>" : s));
+  trace.steps.state_names = trace.steps.state_names.map((s) => (s === "upwind" ? "<!--<script><i id='state'>up</i>" : s));
   writeFileSync(join(dir, "odd.json"), JSON.stringify(trace));
   plumetrace("view", "odd.json", "-o", "odd.html");
   const page = await open("odd.html");
@@ -269,5 +284,143 @@ test("a long run is thinned to its frame budget and still plays", async () => {
   const ms = await viewer(page, "drawTime(20)");
   console.log(`# long run: ${data.steps} steps, ${data.frames.time.length} frames, ${data.path.time.length} path vertices, ${data.snapshots.time.length} snapshots; one frame drawn in ${ms.toFixed(2)} ms`);
   await page.close();
+  assert.deepEqual(errors, []);
+});
+
+test("#t= in the address opens the page at that time, and a link keeps it", async () => {
+  const page = await open("run.html#t=96");
+  assert.equal(await viewer(page, "time()"), 96);
+  assert.match(await page.locator("#p-time").textContent(), /^96\.00 s of/);
+  assert.equal(await page.locator("#here").getAttribute("href"), "#t=96.00");
+  // a new time in the address moves there: the last frame at or before it
+  await page.evaluate(() => { location.hash = "#t=50.5"; });
+  await page.waitForFunction(() => window.plumetraceViewer.time() <= 50.5 && window.plumetraceViewer.time() > 50.4);
+  // beyond the end: the last frame
+  await page.evaluate(() => { location.hash = "#t=1e9"; });
+  await page.waitForFunction(() => window.plumetraceViewer.frame() === window.plumetraceViewer.frames - 1);
+  await page.close();
+  assert.deepEqual(errors, []);
+});
+
+test("the detection region is drawn where odor is perceivable, and its switch hides it", async () => {
+  const page = await open("run.html#t=96");
+  assert.ok((await viewer(page, "regionCells()")) > 50, "cells in odor at 96 s");
+  const grid = await viewer(page, "regionGrid()");
+  assert.equal(grid.nx, 320);
+  assert.equal(grid.ny, 80);
+  const arena = await page.locator("#view").boundingBox();
+  const whole = { x0: arena.x, y0: arena.y, x1: arena.x + arena.width, y1: arena.y + arena.height };
+  const shown = count(await shoot(page), whole, yellowish);
+  assert.ok(shown > 100, `region pixels ${shown}`);
+  await page.locator("#layer-region").click();
+  assert.equal((await viewer(page, "layers()")).region, false);
+  assert.equal(count(await shoot(page), whole, yellowish), 0, "no region pixels once hidden");
+  await page.locator("#layer-region").click();
+  assert.ok(count(await shoot(page), whole, yellowish) > 100, "shown again");
+  await page.close();
+  assert.deepEqual(errors, []);
+});
+
+// the pixels just above the arena's upper wall, over its whole length, and just below it
+async function aboveAndBelowTheUpperWall(page, toScreen, band) {
+  const a = await toScreen(0, 2), b = await toScreen(16, 2);
+  const img = await shoot(page);
+  const above = count(img, { x0: a.x, y0: a.y - band, x1: b.x, y1: a.y - 4 }, (p) => !white(p));
+  const below = count(img, { x0: a.x, y0: a.y + 4, x1: b.x, y1: a.y + 40 }, greyish);
+  return { above, below };
+}
+
+test("filaments are clipped to the arena, in the page and in the figure", async () => {
+  const page = await open("clip.html");
+  await page.locator("#last").click();
+  for (const layer of ["path", "wind", "detections"]) await page.locator(`#layer-${layer}`).click();
+  const { above, below } = await aboveAndBelowTheUpperWall(page, (x, y) => viewer(page, `toScreen(${x}, ${y})`), 40);
+  assert.ok(below > 500, `the plume reaches the upper wall (${below} grey pixels under it)`);
+  assert.equal(above, 0, "nothing is drawn above the upper wall");
+  await page.close();
+
+  // the figure: the arena's rectangle gives the mapping
+  const svg = await open("clip.svg");
+  const r = await svg.evaluate(() => {
+    const a = document.getElementById("arena");
+    return { x: +a.getAttribute("x"), y: +a.getAttribute("y"), w: +a.getAttribute("width"), h: +a.getAttribute("height") };
+  });
+  // why: 12 px, the room between the wall and the caption above it
+  const fig = await aboveAndBelowTheUpperWall(svg, (x, y) => ({ x: r.x + (x / 16) * r.w, y: r.y + ((2 - y) / 4) * r.h }), 12);
+  assert.ok(fig.below > 500, `the figure's plume reaches the upper wall (${fig.below})`);
+  assert.equal(fig.above, 0, "the figure draws nothing above the upper wall");
+  await svg.close();
+  assert.deepEqual(errors, []);
+});
+
+test("the page has a scale bar and the figure axes in metres", async () => {
+  const page = await open("run.html");
+  const bar = await viewer(page, "scaleBar()");
+  const a = await viewer(page, "toScreen(0, 0)"), b = await viewer(page, "toScreen(1, 0)");
+  assert.ok(Math.abs(bar.px - bar.metres * (b.x - a.x)) < 1e-6, "the bar's length is its metres on screen");
+  assert.ok(bar.px >= 80 && bar.px < 400, `bar ${bar.px} px`);
+  const img = await shoot(page);
+  const dark = count(img, { x0: bar.x, y0: bar.y - 1, x1: bar.x + bar.px, y1: bar.y + 2 }, (p) => p[0] < 80);
+  assert.ok(dark > 0.8 * bar.px, `the bar is drawn (${dark} px)`);
+  await page.locator("#zoom-in").click();
+  const zoomed = await viewer(page, "scaleBar()");
+  assert.ok(zoomed.px / zoomed.metres > 1.2 * (bar.px / bar.metres), "the bar follows the zoom");
+  await page.close();
+
+  const svg = await open("run.svg");
+  const ticks = await svg.evaluate(() => [...document.querySelectorAll("#axes text")].map((t) => t.textContent));
+  for (const label of ["0", "8", "16", "-2", "2", "x (m), wind along +x", "y (m)"]) assert.ok(ticks.includes(label), label);
+  assert.match(await svg.locator("#scale-bar text").textContent(), /^[125]0* m$/);
+  await svg.close();
+  assert.deepEqual(errors, []);
+});
+
+test("the legend fits a 900 px window, in the page and in the figure", async () => {
+  const page = await open("run.html", { width: 900, height: 720 });
+  const boxes = await page.evaluate(() => [...document.querySelectorAll("#legend > *")].map((e) => {
+    const r = e.getBoundingClientRect();
+    return { text: e.textContent, right: r.right, bottom: r.bottom };
+  }));
+  assert.ok(boxes.length >= 12, `${boxes.length} legend entries`);
+  for (const b of boxes) {
+    assert.ok(b.right <= 900 && b.bottom <= 720, `legend entry "${b.text}" at ${b.right}, ${b.bottom}`);
+  }
+  // the canvas keeps most of the window
+  const stage = await page.locator("#view").boundingBox();
+  assert.ok(stage.width > 550 && stage.height > 400, `canvas ${stage.width} x ${stage.height}`);
+  await page.close();
+
+  const svg = await open("run.svg", { width: 900, height: 720 });
+  const fig = await svg.evaluate(() => {
+    const root = document.documentElement.getBoundingClientRect();
+    const legend = [...document.querySelectorAll("#legend text")].map((t) => t.getBoundingClientRect().right);
+    return { width: root.width, right: Math.max(...legend) };
+  });
+  assert.ok(fig.width <= 900 && fig.right <= 900, `figure ${fig.width} px, legend to ${fig.right} px`);
+  await svg.close();
+  assert.deepEqual(errors, []);
+});
+
+test("in a meandering wind the compass shows the true wind the trace recorded at the robot", async () => {
+  const trace = JSON.parse(readFileSync(join(dir, "meander.json"), "utf8"));
+  const readings = [];
+  for (const t of [5, 15]) {
+    const page = await open(`meander.html#t=${t}`);
+    const compass = await viewer(page, "compass()");
+    const u = trace.steps.true_wind_x[compass.step], v = trace.steps.true_wind_y[compass.step];
+    assert.equal(trace.steps.time[compass.step], await viewer(page, "time()"));
+    assert.ok(Math.abs(compass.truth.u - u) <= 1e-5 && Math.abs(compass.truth.v - v) <= 1e-5,
+              `compass (${compass.truth.u}, ${compass.truth.v}), trace (${u}, ${v}) at step ${compass.step}`);
+    // the panel reads the same wind
+    const deg = (Math.atan2(v, u) * 180) / Math.PI;
+    assert.equal(await page.locator("#p-true-wind").textContent(),
+                 `${Math.hypot(u, v).toFixed(2)} m/s at ${deg.toFixed(0)}\u00b0, at the robot`);
+    readings.push(compass.truth);
+    await page.close();
+  }
+  // the wind at the robot is not the mean wind, and it turned between the two times
+  assert.ok(readings.some((w) => Math.abs(w.u - 0.9) > 1e-3 || Math.abs(w.v) > 1e-3), "a meander, not the mean");
+  const turn = Math.abs(Math.atan2(readings[0].v, readings[0].u) - Math.atan2(readings[1].v, readings[1].u));
+  assert.ok(turn > 0.01, `the wind turned by ${turn} rad`);
   assert.deepEqual(errors, []);
 });

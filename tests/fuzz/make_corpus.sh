@@ -82,6 +82,8 @@ d = json.loads(json.dumps(doc)); d["config"]["plume"]["sigma_p"] = -1; write("ba
 d = json.loads(json.dumps(doc)); d["snapshots"] = [{"time": 0, "x": [1], "y": [], "z": [], "w": []}]
 write("bad-snapshot.json", d)
 d = json.loads(json.dumps(doc)); del d["plumetrace_trace"]; write("bad-not-trace.json", d)
+d = json.loads(json.dumps(doc)); d["snapshots"][0]["x"] = "@@@@"; write("bad-base64.json", d)
+d = json.loads(json.dumps(doc)); d["steps"]["state"][0] = 9; write("bad-state-index.json", d)
 EOF
 
 # store: a tiny sweep's store with 512-byte pages, and variants (WAL, partial, other campaign,

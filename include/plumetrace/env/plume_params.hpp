@@ -163,4 +163,8 @@ double width_growth(const PlumeParams& params, double dt);
 /// Concentration contributed by one filament of width w (m) at squared distance d2 (m^2).
 double kernel_value(const PlumeParams& params, double w, double d2);
 
+/// The distance (m) within which one filament of width w (m) contributes at least `floor` (> 0):
+/// kernel_value is below `floor` beyond it; 0 when even its peak is below, at most the cut-off.
+double kernel_reach(const PlumeParams& params, double w, double floor);
+
 }  // namespace plumetrace

@@ -18,6 +18,11 @@ void check_trace_path(const std::string& path);
 void write_trace(const std::string& path, const Trace& trace, const Scenario& scenario,
                  const RunResult& result, const RunInfo& info);
 
+/// Rounds a trace's filaments and wind grid as write_trace stores them in a `.json` trace (each
+/// filament column to 16-bit steps over its range, the wind to 1e-6 m/s; the steps are stored
+/// exactly), so that a view drawn from it equals one drawn from the file read back.
+void round_as_stored(Trace& trace);
+
 /// A run read back from a `.json` trace: what it ran, how it ended and what it recorded.
 struct RecordedRun {
   Scenario scenario;    ///< the fully resolved scenario of the run

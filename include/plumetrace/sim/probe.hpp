@@ -6,6 +6,7 @@
 
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/trace.hpp"
 
 namespace plumetrace {
 
@@ -74,6 +75,14 @@ MapGrid arena_grid(const Scenario& scenario, double dx = 0.2, double dy = 0.05);
 /// of `grid`, as fraction[j][i] for y[j], x[i] (the intermittency at each point).
 std::vector<std::vector<double>> detection_map(const Scenario& scenario, const MapGrid& grid,
                                                const ProbeOptions& options);
+
+/// Where the robot's odor sensor would have perceived odor at the instant of a filament snapshot:
+/// for each cell centre of `grid` (row-major by y, x fastest), 1 when the concentration of the
+/// snapshot's filaments there (the scenario's kernel and cut-off) reaches odor.threshold, else 0.
+/// Contributions below 1e-9 of the threshold are left out, so only a cell within that much of
+/// the threshold can read otherwise than the model's concentration().
+std::vector<std::uint8_t> detection_mask(const Scenario& scenario, const FilamentSnapshot& snapshot,
+                                         const MapGrid& grid);
 
 /// Checks that the options take at least one sample and at most kMaxSteps steps; throws ConfigError
 /// naming the option.

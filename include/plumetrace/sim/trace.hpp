@@ -27,6 +27,9 @@ struct TraceStep {
   int wind_samples = 0;
   /// Last wind sample of this step in the robot frame (m/s); meaningful when wind_samples > 0.
   Vec3 wind_body;
+  /// True wind at the robot's sensor after the step, world frame, x and y (m/s); NaN where a
+  /// trace did not record it (format 1 in a wind that varies).
+  Vec2 true_wind;
 };
 
 /// Positions and widths of every filament at one instant.

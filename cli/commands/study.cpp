@@ -40,7 +40,7 @@ int StudyCommand::run() {
   check_campaign_size(sweeps, runs);
   if (out_option->count() == 0) flags.out = "out/" + study.name;
   std::filesystem::create_directories(flags.out);
-  Store store(flags.out + "/results.sqlite", campaign_definition(sweeps), version(), flags.fresh);
+  Store store(flags.out + "/results.sqlite", sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress(study.name, sweeps, store, runs, flags, result)) return kInterrupted;
   write_exports(flags.out, sweeps, store.rows(), runs);

@@ -73,8 +73,7 @@ std::unique_ptr<Store> open_sweep_store(const SweepPlan& plan, const SweepComman
   if (plan.shard.count <= 1) std::filesystem::create_directories(plan.out);
   const auto folder = std::filesystem::path(plan.store_path).parent_path();
   if (!folder.empty()) std::filesystem::create_directories(folder);
-  return std::make_unique<Store>(plan.store_path, campaign_definition(plan.sweeps), version(),
-                                 cmd.fresh);
+  return std::make_unique<Store>(plan.store_path, plan.sweeps, version(), cmd.fresh);
 }
 
 CampaignFlags sweep_flags(const SweepCommand& cmd) {

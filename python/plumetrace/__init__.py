@@ -11,17 +11,24 @@ The C++ core does the work; this package is a thin layer over it. Import path: t
     r["trajectory"]["x"]                   # NumPy arrays
     rows = pt.sweep("studies/lochmatter2008/sets/A.toml", runs=4)
     rows.to_numpy()["success"]             # or rows.to_pandas() when pandas is installed
+    rows = pt.sweep({"surge_cast.d_lost": [0.2, 0.6]}, runs=20)   # a sweep as a dict of axes
+    rows.summary()                         # per point: Wilson 95% of success, t 95% of overhead
+    pt.report(rows, out="out/mine")        # report.html, report.md, report.csv, figures/
 
 Submodules: ``plumetrace.controllers`` (write your own controller), ``plumetrace.env``
 (a Gymnasium-style environment), ``plumetrace.plots`` (matplotlib helpers),
 ``plumetrace.report`` (the reproduction report, ``python3 -m plumetrace.report OUT_DIR``).
 """
 
-__all__ = ["ConfigError", "MAX_THREADS", "Scenario", "SweepRows", "algorithms", "result_fields",
-           "run", "sweep", "__version__"]
+__all__ = ["ConfigError", "MAX_THREADS", "Scenario", "StoreError", "SweepRows", "algorithms",
+           "result_fields", "run", "sweep", "__version__"]
 
 
 def __getattr__(name):
+    if name == "report":  # the report package, callable: plumetrace.report(...) for any sweep
+        import importlib
+
+        return importlib.import_module(".report", __name__)
     # why: lazy, so that plumetrace.report works from the source tree without the C++ module
     if name in __all__:
         from . import api

@@ -220,6 +220,22 @@ def test_report_title_says_what_the_data_say():
     assert report_title(sweep_views(close)) == (
         "s: success is highest at b = 1 (90%) and lowest at b = 2 (60%), within each other's 95% "
         "intervals: the data do not separate them")
+    # two axes: the one with more values along x, the findings per value of the other
+    from plumetrace.report.sweep import per_value_findings, plot_axes
+    two = {"sweeps": [{"name": "t", "title": "", "runs_per_point": 20, "points": [
+        {"index": 3 * i + j, "values": [a, v],
+         "stats": {"runs": 20, "successes": k, "success_lo": k / 20 - 0.3,
+                   "success_hi": min(1.0, k / 20 + 0.1)}}
+        for i, (a, ks) in enumerate((("x", (20, 12, 2)), ("y", (20, 20, 20))))
+        for j, (v, k) in enumerate(zip((0.1, 0.2, 0.3), ks))],
+        "axes": [{"key": "controller.algorithm", "values": ["x", "y"]},
+                 {"key": "wind.vx", "values": [0.1, 0.2, 0.3]}]}]}
+    view = sweep_views(two)[0]
+    assert plot_axes(view) == (1, 0)
+    assert per_value_findings(view) == [
+        ["controller.algorithm = x: success falls with wind.vx from 100% at 0.1 to 10% at 0.3 "
+         "(95% intervals apart)."],
+        ["controller.algorithm = y: success is 100% at every wind.vx."]]
     flat = results([(1, 20, 0.84, 1.0), (2, 20, 0.84, 1.0)])
     assert report_title(sweep_views(flat)) == "s: success is 100% at every point"
 

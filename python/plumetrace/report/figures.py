@@ -75,12 +75,13 @@ def _asym_err(centre: Sequence[Optional[float]], lo, hi, scale: float = 1.0):
 
 
 def _rate_axis(ax, x, points: Sequence[Point], colors: Sequence[str], width: float = 0.7,
-               label_counts: bool = True, label: Optional[str] = None) -> None:
-    """Success-rate bars (%) with their Wilson intervals, and "k/n" above each."""
+               label_counts: bool = True, label: Optional[str] = None, count_rotation: int = 0):
+    """Success-rate bars (%) with their Wilson intervals, and "k/n" above each; returns the
+    bars."""
     rates = [p.rate for p in points]
     heights = [100 * r if r is not None else 0.0 for r in rates]
-    ax.bar(x, heights, width=width, color=colors, edgecolor="#333333", linewidth=0.4, zorder=2,
-           label=label)
+    bars = ax.bar(x, heights, width=width, color=colors, edgecolor="#333333", linewidth=0.4,
+                  zorder=2, label=label)
     err = _asym_err(rates, [p.rate_lo for p in points], [p.rate_hi for p in points], 100)
     ax.errorbar(x, heights, yerr=err, fmt="none", ecolor="black", elinewidth=1, capsize=3,
                 zorder=3)
@@ -88,14 +89,16 @@ def _rate_axis(ax, x, points: Sequence[Point], colors: Sequence[str], width: flo
         for xi, p in zip(x, points):
             top = 100 * (p.rate_hi if p.rate_hi is not None else (p.rate or 0.0))
             ax.annotate(f"{p.successes}/{p.runs}", (xi, top), xytext=(0, 2),
-                        textcoords="offset points", ha="center", va="bottom", fontsize=7)
+                        textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                        rotation=count_rotation)
     ax.set_ylim(0, 112)
     ax.set_yticks(range(0, 101, 20))
     ax.set_ylabel("success rate (%)")
+    return bars
 
 
 def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_n: bool = True,
-                   width: float = 0.7):
+                   width: float = 0.7, count_rotation: int = 0):
     """Overhead bars from 1 (the straight-line optimum) with their intervals (the bootstrap's in
     the paper's report) and medians.
 
@@ -128,15 +131,16 @@ def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_
         if label_n:
             for xi, i, t in zip(hx, have, tops):
                 ax.annotate(f"n={points[i].oh_n}", (xi, t), xytext=(0, 2),
-                            textcoords="offset points", ha="center", va="bottom", fontsize=7)
+                            textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                            rotation=count_rotation)
     else:
         ax.set_ylim(0.95, 1.5)
         ax.text(0.5, 0.5, "no successful runs", transform=ax.transAxes, ha="center",
                 va="center", color=MISSING_COLOR)
-    lo_y = ax.get_ylim()[0]
+    # why: at the bottom of the panel whatever limits it gets later (x in data, y in the axes)
     for i in missing:
-        ax.text(x[i], lo_y, " none", rotation=90, ha="center", va="bottom", fontsize=7,
-                color=MISSING_COLOR)
+        ax.text(x[i], 0.0, " none", rotation=90, ha="center", va="bottom", fontsize=7,
+                color=MISSING_COLOR, transform=ax.get_xaxis_transform())
     ax.axhline(1.0, color="#555555", linewidth=0.6, zorder=1)
     ax.set_ylabel("distance overhead $d_t/d_u$")
     return missing
@@ -191,11 +195,12 @@ HUE_COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1", 
 
 def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[tuple],
                       x_title: str, fixed_index: Optional[int] = None,
-                      interval: str = "t 95%") -> None:
+                      interval: str = "t 95%", runs_per_point: Optional[int] = None) -> None:
     """The paper's two panels on two axes: success rate (Wilson 95%) and overhead of the
     successful runs (`interval`), a bar per value of the x axis for each group. `groups`: (label
     or None, [Point or None per x value]); with several groups the bars of one x value stand side
-    by side, each group in its colour (hue). A point missing from a group (None) draws nothing."""
+    by side, each group in its colour (hue). A point without runs (None) is marked "no runs"; one
+    with fewer runs than `runs_per_point` is hatched."""
     n = len(x_labels)
     k = max(len(groups), 1)
     width = 0.7 if k == 1 else 0.8 / k
@@ -211,22 +216,35 @@ def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[
             colors = [colors[i] for i in at]
         else:
             colors = [HUE_COLORS[g % len(HUE_COLORS)]] * len(at)
-        _rate_axis(ax_rate, xs, pts, colors, width=width, label_counts=counts, label=label)
+        bars = _rate_axis(ax_rate, xs, pts, colors, width=width, label_counts=counts,
+                          label=label, count_rotation=90 if k > 1 else 0)
+        for bar, p in zip(bars, pts):
+            if runs_per_point is not None and p.runs < runs_per_point:
+                bar.set_hatch("///")
+        for i, p in enumerate(points):
+            if p is None:
+                ax_rate.text(i + offset, 2, "no runs", rotation=90, ha="center", va="bottom",
+                             fontsize=7, color=MISSING_COLOR)
         if any(p.oh_mean is not None for p in pts):
-            _overhead_axis(ax_oh, xs, pts, colors, label_n=counts, width=width)
+            _overhead_axis(ax_oh, xs, pts, colors, label_n=counts, width=width,
+                           count_rotation=90 if k > 1 else 0)
         else:
             no_overhead += xs
     means = [p for _, pts in groups for p in pts if p is not None and p.oh_mean is not None]
     if means:
-        # why: each group set the limits for its own bars; the panel shows them all
-        tops = [p.oh_hi if p.oh_hi is not None else p.oh_mean for p in means]
-        lows = [p.oh_lo if p.oh_lo is not None else p.oh_mean for p in means]
-        top, bottom = max(tops + [1.0]), min(lows + [1.0])
+        # why: each group set the limits for its own bars; the panel shows them all. The t
+        # interval of two or three runs can span metres of overhead: the limits follow the
+        # points of four runs or more where there are any (longer bars run off the panel)
+        steady = [p for p in means if p.oh_n >= 4] or means
+        tops = [p.oh_hi if p.oh_hi is not None else p.oh_mean for p in steady]
+        lows = [p.oh_lo if p.oh_lo is not None else p.oh_mean for p in steady]
+        top = max(tops + [p.oh_mean for p in means] + [1.0])
+        bottom = min(lows + [1.0])
         span = max(top - bottom, 0.05)
         ax_oh.set_ylim(min(1.0, bottom) - 0.05 * span, top + 0.18 * span)
         for xi in no_overhead:
-            ax_oh.text(xi, ax_oh.get_ylim()[0], " none", rotation=90, ha="center", va="bottom",
-                       fontsize=7, color=MISSING_COLOR)
+            ax_oh.text(xi, 0.0, " none", rotation=90, ha="center", va="bottom", fontsize=7,
+                       color=MISSING_COLOR, transform=ax_oh.get_xaxis_transform())
     else:
         _overhead_axis(ax_oh, [], [], [])  # "no successful runs"
     ax_rate.set_title("success rate (Wilson 95%)", fontsize=10)
@@ -243,7 +261,7 @@ def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[
 
 
 def _panel_legend(ax_legend, groups: Sequence[tuple], hue_title: Optional[str],
-                  fixed: bool, medians: bool, interval: str) -> None:
+                  fixed: bool, medians: bool, interval: str, hatched: bool = False) -> None:
     if len(groups) > 1:
         handles = [Patch(color=HUE_COLORS[g % len(HUE_COLORS)], label=str(label))
                    for g, (label, _) in enumerate(groups)]
@@ -256,13 +274,17 @@ def _panel_legend(ax_legend, groups: Sequence[tuple], hue_title: Optional[str],
     if medians:
         handles.append(Line2D([], [], linestyle="none", marker="D", markersize=4,
                               color="#f2b134", markeredgecolor="black", label="median overhead"))
+    if hatched:
+        handles.append(Patch(facecolor="white", edgecolor="#333333", hatch="///",
+                             label="fewer runs than asked"))
     ax_legend.legend(handles=handles, loc="center", ncol=min(len(handles), 6), fontsize=8,
                      frameon=False, title=hue_title if len(groups) > 1 else None,
                      title_fontsize=8)
 
 
 def sweep_figure(facets: Sequence[tuple], x_title: str, path: Path,
-                 hue_title: Optional[str] = None, interval: str = "t 95%") -> Path:
+                 hue_title: Optional[str] = None, interval: str = "t 95%",
+                 runs_per_point: Optional[int] = None) -> Path:
     """Any sweep's figure: one row of the two panels per facet. `facets`: (title or None,
     x labels, groups as draw_sweep_panels takes them, index of the fixed x value or None); the
     groups' labels are the values of `hue_title`'s axis, the same in every facet."""
@@ -272,7 +294,8 @@ def sweep_figure(facets: Sequence[tuple], x_title: str, path: Path,
     medians = False
     for r, (title, labels, groups, fixed) in enumerate(facets):
         ax_rate, ax_oh = fig.add_subplot(grid_spec[r, 0]), fig.add_subplot(grid_spec[r, 1])
-        draw_sweep_panels(ax_rate, ax_oh, labels, groups, x_title, fixed, interval)
+        draw_sweep_panels(ax_rate, ax_oh, labels, groups, x_title, fixed, interval,
+                          runs_per_point)
         if title:
             ax_rate.set_title(f"{title}: success rate (Wilson 95%)", fontsize=10)
             ax_oh.set_title(f"{title}: overhead ({interval})", fontsize=10)
@@ -281,7 +304,11 @@ def sweep_figure(facets: Sequence[tuple], x_title: str, path: Path,
     ax_legend = fig.add_subplot(grid_spec[rows, :])
     ax_legend.axis("off")
     first = facets[0] if facets else (None, [], [], None)
-    _panel_legend(ax_legend, first[2], hue_title, first[3] is not None, medians, interval)
+    hatched = runs_per_point is not None and any(
+        p is not None and p.runs < runs_per_point
+        for _, _, groups, _ in facets for _, pts in groups for p in pts)
+    _panel_legend(ax_legend, first[2], hue_title, first[3] is not None, medians, interval,
+                  hatched)
     return _save(fig, path)
 
 

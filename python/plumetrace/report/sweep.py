@@ -209,9 +209,41 @@ def _separated(a: Point, b: Point) -> Optional[bool]:
     return a.rate_hi < b.rate_lo or b.rate_hi < a.rate_lo
 
 
+def series_finding(key: str, series: list, every: str) -> str:
+    """What success does along one axis: `series` is [(value, Point)] in the axis' order. A
+    rate that rises or falls throughout (three values or more, numeric) is a trend; otherwise
+    where it is highest and lowest; either way whether the Wilson intervals of the two keep them
+    apart. `every`: the words for "at every ..." when the rate does not change."""
+    pts = [(v, p) for v, p in series if p is not None and p.runs > 0]
+    if not pts:
+        return "no runs stored"
+    best = max(pts, key=lambda vp: vp[1].rate)
+    worst = min(pts, key=lambda vp: vp[1].rate)
+    if best[1].rate == worst[1].rate:
+        return f"success is {_pct(best[1].rate)} at every {every}"
+    seq = [p.rate for _, p in pts]
+    numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v, _ in pts)
+    monotone = numeric and len(pts) >= 3 and (all(a <= b for a, b in zip(seq, seq[1:])) or
+                                              all(a >= b for a, b in zip(seq, seq[1:])))
+    a, b = (pts[0], pts[-1]) if monotone else (best, worst)
+    apart = _separated(a[1], b[1])
+    tail = ("" if apart is None else " (95% intervals apart)" if apart else
+            ", within each other's 95% intervals: the data do not separate them")
+    if monotone:
+        verb = "rises" if seq[-1] > seq[0] else "falls"
+        return (f"success {verb} with {key} from {_pct(seq[0])} at {fmt_axis_value(a[0])} to "
+                f"{_pct(seq[-1])} at {fmt_axis_value(b[0])}{tail}")
+    return (f"success is highest at {key} = {fmt_axis_value(a[0])} ({_pct(a[1].rate)}) and "
+            f"lowest at {key} = {fmt_axis_value(b[0])} ({_pct(b[1].rate)}){tail}")
+
+
 def success_finding(s: SweepView, short: bool = False) -> str:
-    """One clause on success: its trend or its extremes, and whether the intervals separate
-    them; `short`: the keys by their last part (for the title)."""
+    """One clause on success over the whole sweep: along its axis for one axis, else where it is
+    highest and lowest; `short`: the keys by their last part (for the title)."""
+    if len(s.axes) == 1:
+        key = s.axes[0].key
+        return series_finding(key.rsplit(".", 1)[-1] if short else key,
+                              [(v, s.drawn((v,))) for v in s.axes[0].values], "point")
     pts = [p for p in s.points if p.point.runs > 0]
     if not pts:
         return "no runs stored"
@@ -220,23 +252,8 @@ def success_finding(s: SweepView, short: bool = False) -> str:
     if best.point.rate == worst.point.rate:
         return f"success is {_pct(best.point.rate)} at every point"
     apart = _separated(best.point, worst.point)
-    tail = ("" if apart is None else
-            " (95% intervals apart)" if apart else
+    tail = ("" if apart is None else " (95% intervals apart)" if apart else
             ", within each other's 95% intervals: the data do not separate them")
-    axis = s.axes[0]
-    if len(s.axes) == 1 and len(pts) >= 3 and all(isinstance(v, (int, float)) for v in axis.values):
-        order = sorted(pts, key=lambda p: p.values[0])
-        seq = [p.point.rate for p in order]
-        if all(a <= b for a, b in zip(seq, seq[1:])) or all(a >= b for a, b in zip(seq, seq[1:])):
-            first, last = order[0], order[-1]
-            verb = "rises" if seq[-1] > seq[0] else "falls"
-            apart = _separated(first.point, last.point)
-            tail = ("" if apart is None else " (95% intervals apart)" if apart else
-                    ", within each other's 95% intervals: the data do not separate the ends")
-            key = axis.key.rsplit(".", 1)[-1] if short else axis.key
-            return (f"success {verb} with {key} from {_pct(seq[0])} at "
-                    f"{fmt_axis_value(first.values[0])} to {_pct(seq[-1])} at "
-                    f"{fmt_axis_value(last.values[0])}{tail}")
     return (f"success is highest at {where(s, best, short)} ({_pct(best.point.rate)}) and "
             f"lowest at {where(s, worst, short)} ({_pct(worst.point.rate)}){tail}")
 
@@ -256,28 +273,21 @@ def overhead_finding(s: SweepView) -> Optional[str]:
 
 
 def per_value_findings(s: SweepView) -> list:
-    """For a sweep of two axes: for each value of the second, where along the first success is
-    highest and lowest."""
+    """For a sweep of two axes: for each value of the colour axis, what success does along the
+    x axis (plot_axes)."""
     if len(s.axes) != 2:
         return []
-    first, second = s.axes
+    xi, hi = plot_axes(s)
+    along, per = s.axes[xi], s.axes[hi]
     items = []
-    for v2 in second.values:
-        pts = [p for p in (s.at((v1, v2)) for v1 in first.values) if p and p.point.runs > 0]
-        if len(pts) < 2:
-            continue
-        best = max(pts, key=lambda p: p.point.rate)
-        worst = min(pts, key=lambda p: p.point.rate)
-        if best.point.rate == worst.point.rate:
-            text = f"{_pct(best.point.rate)} at every {first.key}"
-        else:
-            apart = _separated(best.point, worst.point)
-            text = (f"best at {first.key} = {fmt_axis_value(best.values[0])} "
-                    f"({_pct(best.point.rate)}), worst at {fmt_axis_value(worst.values[0])} "
-                    f"({_pct(worst.point.rate)})"
-                    + ("" if apart is None else "; intervals apart" if apart
-                       else "; intervals overlap"))
-        items.append([f"{second.key} = {fmt_axis_value(v2)}: {text}."])
+    for h in per.values:
+        series = []
+        for x in along.values:
+            values = [None, None]
+            values[xi], values[hi] = x, h
+            series.append((x, s.drawn(values)))
+        text = series_finding(along.key, series, along.key)
+        items.append([f"{per.key} = {fmt_axis_value(h)}: {text}."])
     return items
 
 
@@ -294,47 +304,64 @@ def report_title(views: list) -> str:
 
 # --- figures and tables ----------------------------------------------------------------------
 
-def figure_facets(s: SweepView) -> tuple:
-    """(facets for figures.sweep_figure, hue title or None, a note on the layout or None, or
-    None as facets when there would be more than MAX_FACETS rows)."""
-    first = s.axes[0]
-    labels = [fmt_axis_value(v) for v in first.values]
+def plot_axes(s: SweepView) -> tuple:
+    """(index of the x axis, index of the colour axis or None): of the first two axes, the one
+    with more values goes along x (the first on a tie), the other is drawn as colours."""
     if len(s.axes) == 1:
-        return [(None, labels, [(None, [s.drawn((v,)) for v in first.values])], first.fixed_index)], \
-            None, None
-    second, rest = s.axes[1], s.axes[2:]
+        return 0, None
+    a, b = s.axes[0], s.axes[1]
+    return (1, 0) if len(b.values) > len(a.values) else (0, 1)
+
+
+def figure_facets(s: SweepView) -> tuple:
+    """(facets for figures.sweep_figure, the x axis, hue title or None, a note on the layout or
+    None); facets None when there would be more than MAX_FACETS rows of panels."""
+    xi, hi = plot_axes(s)
+    x_axis = s.axes[xi]
+    labels = [fmt_axis_value(v) for v in x_axis.values]
+
+    def drawn(x, h, combo):
+        values = [None] * len(s.axes)
+        values[xi] = x
+        if hi is not None:
+            values[hi] = h
+        values[2:] = combo
+        return s.drawn(values)
+
+    if hi is None:
+        return [(None, labels, [(None, [drawn(v, None, ()) for v in x_axis.values])],
+                 x_axis.fixed_index)], x_axis, None, None
+    other, rest = s.axes[hi], s.axes[2:]
     combos = [()]
     for a in rest:
         combos = [c + (v,) for c in combos for v in a.values]
-    hue = len(second.values) <= MAX_HUE
-    rows = len(combos) * (1 if hue else len(second.values))
+    hue = len(other.values) <= MAX_HUE
+    rows = len(combos) * (1 if hue else len(other.values))
     if rows > MAX_FACETS:
         note = (f"The sweep has {len(s.points)} points over {len(s.axes)} axes: drawn, they would "
                 f"take {rows} rows of panels (more than {MAX_FACETS}), so the figure is left out; "
                 "the table lists every point.")
-        return None, None, note
+        return None, x_axis, None, note
     facets = []
     for combo in combos:
         fixed_rest = ", ".join(f"{a.key} = {fmt_axis_value(v)}" for a, v in zip(rest, combo))
         if hue:
-            groups = [(fmt_axis_value(v2), [s.drawn((v1, v2) + combo) for v1 in first.values])
-                      for v2 in second.values]
-            facets.append((fixed_rest or None, labels, groups, first.fixed_index))
-        else:
-            for v2 in second.values:
-                title = ", ".join(x for x in (f"{second.key} = {fmt_axis_value(v2)}", fixed_rest)
-                                  if x)
-                facets.append((title, labels, [(None, [s.drawn((v1, v2) + combo)
-                                                       for v1 in first.values])],
-                               first.fixed_index))
-    how = (f"colours: {second.key}" if hue else
-           f"one row of panels per value of {second.key} (it has {len(second.values)} values, "
+            groups = [(fmt_axis_value(h), [drawn(x, h, combo) for x in x_axis.values])
+                      for h in other.values]
+            facets.append((fixed_rest or None, labels, groups, x_axis.fixed_index))
+            continue
+        for h in other.values:
+            title = ", ".join(t for t in (f"{other.key} = {fmt_axis_value(h)}", fixed_rest) if t)
+            facets.append((title, labels, [(None, [drawn(x, h, combo) for x in x_axis.values])],
+                           x_axis.fixed_index))
+    how = (f"colours: {other.key}" if hue else
+           f"one row of panels per value of {other.key} (it has {len(other.values)} values, "
            f"more than {MAX_HUE} colours)")
-    note = f"The x axis is {first.key}; {how}"
+    note = f"The x axis is {x_axis.key}; {how}"
     if rest:
         note += (f"; one row per combination of {', '.join(a.key for a in rest)} "
                  f"({len(s.axes)} axes: every point is drawn, nothing is pooled)")
-    return facets, second.key if hue else None, note + "."
+    return facets, x_axis, other.key if hue else None, note + "."
 
 
 def _safe(name: str) -> str:
@@ -442,17 +469,18 @@ def build_sweep_report(out_dir, results: Optional[dict] = None,
     sections = []
     for k, s in enumerate(views):
         blocks = [Para(_describe(s))]
-        facets, hue, note = figure_facets(s)
+        facets, x_axis, hue, note = figure_facets(s)
         if note:
             blocks.append(Para([note]))
         if facets:
             name = f"sweep_{_safe(s.name)}" + (f"_{k}" if len(views) > 1 else "")
-            png = sweep_figure(facets, s.axes[0].label, fig_dir / f"{name}.png", hue_title=hue)
+            png = sweep_figure(facets, x_axis.label, fig_dir / f"{name}.png", hue_title=hue,
+                               runs_per_point=s.runs_per_point)
             written.append(png)
             blocks.append(Fig(path=png, rel=png.relative_to(out).as_posix(),
                               caption=f"{s.title or s.name}: success rate (Wilson 95%) and "
                                       "distance overhead of the successful runs (t 95%) against "
-                                      f"{s.axes[0].key}" + (f", one colour per {hue}" if hue
+                                      f"{x_axis.key}" + (f", one colour per {hue}" if hue
                                                             else "") + ".",
                               alt=f"success rate and overhead panels of sweep {s.name}"))
         header, rows, classes = table_rows(s)

@@ -73,7 +73,7 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
 
 int draw_report(const std::string& out, const std::string& module,
                 const std::vector<std::string>& args) {
-  const std::string python_path = std::string(kSourceDir) + "/python";
+  const std::string python_path = data_dir() + "/python";
   // what the report prints follows what was printed here
   std::fflush(nullptr);
   std::vector<std::string> argv{kPython, "-m", module, out};

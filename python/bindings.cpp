@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -33,6 +34,7 @@
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/probe.hpp"
 #include "plumetrace/sim/result.hpp"
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/trace.hpp"
@@ -333,6 +335,60 @@ py::dict run(const std::optional<std::string>& path, const py::list& overrides, 
     out["trajectory"] = trace_columns(recorded);
     out["snapshots"] = snapshot_list(recorded);
   }
+  return out;
+}
+
+// the plume alone, sampled at the rows (x, y, z) of `points` as `plumetrace probe` samples it:
+// per point the detect fraction and mean concentration, and the centrelines at centreline_x
+py::dict probe(const std::optional<std::string>& path, const py::list& overrides,
+               const py::array_t<double, py::array::c_style | py::array::forcecast>& points,
+               std::optional<double> warmup, double duration, double interval, std::uint64_t seed,
+               const std::vector<double>& centreline_x, double slab) {
+  if (points.ndim() != 2 || points.shape(1) != 3) {
+    throw py::value_error("points: expected an array of shape (N, 3)");
+  }
+  const pt::Scenario scenario = scenario_of(path, overrides);
+  pt::ProbeOptions options;
+  if (warmup) options.warmup = *warmup;
+  options.duration = duration;
+  options.interval = interval;
+  options.seed = seed;
+  options.centreline_x = centreline_x;
+  options.centreline_slab = slab;
+  const auto xyz = points.unchecked<2>();
+  std::vector<pt::Vec3> at;
+  at.reserve(static_cast<std::size_t>(xyz.shape(0)));
+  for (py::ssize_t i = 0; i < xyz.shape(0); ++i) at.push_back({xyz(i, 0), xyz(i, 1), xyz(i, 2)});
+  pt::ProbeReport report;
+  {
+    py::gil_scoped_release release;
+    report = pt::probe_report(scenario, at, options);
+  }
+  std::vector<double> detect, mean;
+  for (const pt::ProbeResult& r : report.points) {
+    detect.push_back(r.detect_fraction);
+    mean.push_back(r.mean_concentration);
+  }
+  std::vector<double> cx, mean_y, std_y;
+  std::vector<std::int64_t> samples, empty;
+  for (const pt::CentrelineResult& c : report.centrelines) {
+    cx.push_back(c.x);
+    mean_y.push_back(c.mean_y);
+    std_y.push_back(c.std_y);
+    samples.push_back(c.samples);
+    empty.push_back(c.empty);
+  }
+  py::dict centrelines;
+  centrelines["x"] = to_array(cx);
+  centrelines["mean_y"] = to_array(mean_y);
+  centrelines["std_y"] = to_array(std_y);
+  centrelines["samples"] = to_array(samples);
+  centrelines["empty"] = to_array(empty);
+  py::dict out;
+  out["detect_fraction"] = to_array(detect);
+  out["mean_concentration"] = to_array(mean);
+  out["samples"] = report.points.empty() ? 0L : report.points.front().samples;
+  out["centrelines"] = centrelines;
   return out;
 }
 
@@ -731,6 +787,19 @@ PYBIND11_MODULE(_core, m) {
         py::arg("store"), py::arg("out"), py::arg("runs"),
         "the exports of a sweep's runs in a results store (as plumetrace report writes them); "
         "the points with runs missing");
+  m.def("probe", &probe, py::arg("path"), py::arg("overrides"), py::arg("points"),
+        py::arg("warmup"), py::arg("duration"), py::arg("interval"), py::arg("seed"),
+        py::arg("centreline_x"), py::arg("slab"),
+        "the plume alone sampled at points (plumetrace probe): detect fraction, mean "
+        "concentration, samples, centrelines");
+  m.def(
+      "arena_grid",
+      [](const std::optional<std::string>& path, const py::list& overrides) {
+        const pt::MapGrid grid = pt::arena_grid(scenario_of(path, overrides));
+        return py::make_tuple(to_array(grid.x), to_array(grid.y), grid.z);
+      },
+      py::arg("path"), py::arg("overrides"),
+      "the detection map's cell centres x, y and height z (plumetrace probe --map)");
   m.def("evaluate_sets", &evaluate_sets, py::arg("sets_dir"), py::arg("overrides"), py::arg("runs"),
         py::arg("seed"), py::arg("threads"), py::arg("sets") = std::vector<std::string>{},
         py::arg("claims") = std::vector<int>{},
@@ -788,6 +857,19 @@ PYBIND11_MODULE(_core, m) {
              return py::make_tuple(p.x, p.y, p.heading);
            })
       .def("odometer", [](const pt::World& w) { return w.robot().odometer; })
+      .def(
+          "filaments",
+          [](const pt::World& w) {
+            // why: only puffs are drawn, as in traces; another odor model gives no filaments
+            const pt::OdorSnapshot snap = w.environment().odor->snapshot();
+            const bool puffs = snap.kind == pt::OdorSnapshotKind::kFilaments;
+            const auto column = [&](std::span<const double> v) {
+              return py::array_t<double>(static_cast<py::ssize_t>(puffs ? v.size() : 0), v.data());
+            };
+            const pt::FilamentSpans& f = snap.filaments;
+            return py::make_tuple(column(f.x), column(f.y), column(f.w));
+          },
+          "the filaments' centres x, y and widths (m) now, as NumPy copies (for rendering)")
       .def("result_json", [](const pt::World& w) {
         const pt::RunResult r = w.result();
         return pt::result_to_json(r, {"external", r.seed, r.trial});

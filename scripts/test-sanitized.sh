@@ -13,7 +13,7 @@
 # PLUMETRACE_ASAN_BUILD names another.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh --test
 build="${PLUMETRACE_ASAN_BUILD:-build-asan}"
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)

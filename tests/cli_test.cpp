@@ -111,6 +111,30 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
   }
 }
 
+TEST(Cli, SeedAndTrialShowAsWholeNumbersInHelpAndKeepTheirChecks) {
+  for (const char* command : {"run", "probe"}) {
+    const Output o = cli(std::string(command) + " --help");
+    ASSERT_EQ(o.code, 0) << command;
+    EXPECT_NE(o.out.find("--seed UINT"), std::string::npos) << command << ":\n" << o.out;
+    EXPECT_EQ(o.out.find("--seed TEXT"), std::string::npos) << command;
+  }
+  const Output run = cli("run --help");
+  EXPECT_NE(run.out.find("--trial UINT"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("--trial TEXT"), std::string::npos) << run.out;
+  // the whole range of a 64-bit seed, and nothing past it
+  const Output top = cli("run --seed 18446744073709551615 --trial 18446744073709551615 --json");
+  ASSERT_EQ(top.code, 0) << top.err;
+  EXPECT_EQ(json::parse(top.out)["seed"].get<std::uint64_t>(), 18446744073709551615ULL);
+  for (const char* args : {"run --seed 18446744073709551616", "run --trial x",
+                           "probe --points 1,0,0 --seed 1e3", "run --seed=-0"}) {
+    const Output o = cli(args);
+    EXPECT_EQ(o.code, 2) << args;
+    EXPECT_NE(o.err.find("must be a whole number from 0 to 18446744073709551615"),
+              std::string::npos)
+        << args << " said: " << o.err;
+  }
+}
+
 TEST(Cli, TomlValuesOfTheWrongTypeNameTheKey) {
   const std::string path = testing::temp_path("array", ".toml");
   std::ofstream(path) << "[plume]\nsigma_p = [0.1]\n";

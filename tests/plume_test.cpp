@@ -469,6 +469,59 @@ TEST(Plume, PaperLiteralPresetMatchesSpecTable) {
   EXPECT_EQ(p.gamma, 4e-7);
 }
 
+// Farrell et al. (2002)'s relative dispersion (plume.dispersion = "farrell"): a centre with a
+// white-noise velocity of diffusivity D wanders with variance 2 D t per axis, and the squared
+// width grows as w0^2 + rate t, whatever the time step. 4000 filaments released together at the
+// origin, no wind, 1 s at two time steps; the variance of x, y and z within 4 sigma (the sample
+// variance of n normals has a standard error of var sqrt(2 / (n - 1))).
+TEST(Plume, FarrellDispersionSpreadsCentresAs2DtAndSquaredWidthsAsRateT) {
+  PlumeParams p;
+  p.dispersion = Dispersion::kFarrell;
+  p.relative_diffusivity = 0.01;
+  p.spread_rate = 0.002;
+  const std::int64_t n = 4000;
+  for (const double dt : {0.032, 0.008}) {
+    const auto steps = static_cast<int>(std::lround(1.024 / dt));
+    const double t = steps * dt;
+    std::vector<double> x(n, 0.0), y(n, 0.0), z(n, 0.0), w(n, 0.1), h(n, 10.0);
+    Rng rng(2002);
+    for (int k = 0; k < steps; ++k) {
+      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, {},
+                             rng.next_u64(), walk_stddev(p, dt), width_growth(p, dt), true);
+    }
+    const double expected = 2.0 * p.relative_diffusivity * t;
+    for (const auto* axis : {&x, &y, &z}) {
+      double sum = 0.0;
+      for (double v : *axis) sum += v * v;
+      const double variance = sum / static_cast<double>(n);
+      EXPECT_NEAR(variance, expected, 4.0 * expected * std::sqrt(2.0 / (n - 1.0))) << "dt " << dt;
+    }
+    for (std::int64_t i = 0; i < n; ++i) {
+      ASSERT_NEAR(w[i] * w[i], 0.01 + p.spread_rate * t, 1e-14) << "dt " << dt;
+      ASSERT_EQ(h[i], 1.0 / w[i]);
+    }
+  }
+  // the paper's rows do not apply to Farrell's dispersion, and the other way round
+  PlumeParams paper;
+  paper.relative_diffusivity = 1.0;
+  EXPECT_EQ(walk_stddev(paper, 0.032), 0.02 * 0.032);
+  EXPECT_EQ(width_growth(paper, 0.032), paper.gamma);
+  p.sigma_p = 5.0;
+  p.gamma = 1.0;
+  EXPECT_EQ(walk_stddev(p, 0.032), std::sqrt(2.0 * 0.01 * 0.032));
+  EXPECT_EQ(width_growth(p, 0.032), 0.002 * 0.032);
+}
+
+// The Farrell defaults are the paper rows' walk and growth at the default time step, so that
+// switching plume.dispersion changes only how they scale with sim.dt.
+TEST(Plume, FarrellDefaultsEqualThePaperRowsAtTheDefaultTimeStep) {
+  PlumeParams paper, farrell;
+  farrell.dispersion = Dispersion::kFarrell;
+  EXPECT_NEAR(walk_stddev(farrell, kDt), walk_stddev(paper, kDt), 1e-15);
+  EXPECT_NEAR(width_growth(farrell, kDt), width_growth(paper, kDt), 1e-20);
+  EXPECT_NEAR(walk_stddev(farrell, kDt / 4), walk_stddev(paper, kDt / 4) * 2.0, 1e-15);
+}
+
 TEST(Plume, SameSeedSamePlume) {
   const ConstantWind wind({1.0, 0.0, 0.0});
   FilamentPlume a(PlumeParams{}, SourceParams{}, 16.0, 42),
@@ -495,7 +548,7 @@ namespace {
 // The scalar formulas of the plume's loops, one filament at a time and never vectorised.
 [[gnu::optimize("no-tree-vectorize")]] void scalar_step(
     std::vector<double>& x, std::vector<double>& y, std::vector<double>& z, std::vector<double>& w,
-    const Vec3& d, std::uint64_t key, double stddev, double gamma) {
+    const Vec3& d, std::uint64_t key, double stddev, double gamma, bool area = false) {
   const auto n = static_cast<std::int64_t>(x.size());
   const auto normals = [key](std::int64_t counter) {
     float a, b;
@@ -506,7 +559,7 @@ namespace {
     const auto [a, b] = normals(2 * i);
     x[i] += d.x + stddev * a;
     y[i] += d.y + stddev * b;
-    w[i] += (gamma / 2.0) * (1.0 / w[i]);
+    w[i] = area ? std::sqrt(w[i] * w[i] + gamma) : w[i] + (gamma / 2.0) * (1.0 / w[i]);
   }
   for (std::int64_t j = 0; j < n / 2; ++j) {
     const auto [a, b] = normals(2 * j + 1);
@@ -527,18 +580,21 @@ TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
       w[i] = 0.1 + 0.05 * rng.uniform();
       h[i] = 1.0 / w[i];
     }
-    // one step: the loop the plume runs, against the scalar formulas
-    auto sx = x, sy = y, sz = z, sw = w;
-    const Vec3 d{0.032, -0.001, 0.0005};
-    loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, d, 0xabcdef + n,
-                           0.0032, 4e-7);
-    scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7);
-    for (std::int64_t i = 0; i < n; ++i) {
-      ASSERT_EQ(x[i], sx[i]) << "n " << n << " filament " << i;
-      ASSERT_EQ(y[i], sy[i]) << "n " << n << " filament " << i;
-      ASSERT_EQ(z[i], sz[i]) << "n " << n << " filament " << i;
-      ASSERT_EQ(w[i], sw[i]) << "n " << n << " filament " << i;
-      ASSERT_EQ(h[i], 1.0 / sw[i]) << "n " << n << " filament " << i;
+    // one step of each width growth (the paper's, then Farrell's): the loop the plume runs,
+    // against the scalar formulas
+    for (const bool area : {false, true}) {
+      auto sx = x, sy = y, sz = z, sw = w;
+      const Vec3 d{0.032, -0.001, 0.0005};
+      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, d, 0xabcdef + n,
+                             0.0032, 4e-7, area);
+      scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7, area);
+      for (std::int64_t i = 0; i < n; ++i) {
+        ASSERT_EQ(x[i], sx[i]) << "n " << n << " filament " << i << " area " << area;
+        ASSERT_EQ(y[i], sy[i]) << "n " << n << " filament " << i << " area " << area;
+        ASSERT_EQ(z[i], sz[i]) << "n " << n << " filament " << i << " area " << area;
+        ASSERT_EQ(w[i], sw[i]) << "n " << n << " filament " << i << " area " << area;
+        ASSERT_EQ(h[i], 1.0 / sw[i]) << "n " << n << " filament " << i << " area " << area;
+      }
     }
     // kernels at a point: the loop against kernel_value, per filament, for both kernels
     for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {

@@ -66,7 +66,8 @@ CLI::App* ProbeCommand::add(CLI::App& app) {
       ->check(finite_number(0.0, true));
   sub->add_option("--interval", options.interval, "time between samples (s)")
       ->check(finite_number(0.0, true));
-  sub->add_option("--seed", seed, "master seed (default 1)");
+  sub->add_option("--seed", seed, "master seed, 0 to 2^64-1 (default 1)")
+      ->type_name("UINT");  // why: kept as text and parsed by parse_u64, which names the option
   sub->add_option("--centreline", centreline,
                   "downwind positions \"x;x;...\" (m) where the plume's centreline is measured: "
                   "mean and spread of its lateral position");

@@ -38,8 +38,9 @@ void print_human(const RunResult& r, const RunInfo& info) {
 CLI::App* RunCommand::add(CLI::App& app) {
   auto* sub = app.add_subcommand("run", "simulate one run and print its metrics");
   scenario.add_to(*sub, true);
-  sub->add_option("--seed", seed, "master seed (default 1)");
-  sub->add_option("--trial", trial, "trial index (default 0)");
+  sub->add_option("--seed", seed, "master seed, 0 to 2^64-1 (default 1)")
+      ->type_name("UINT");  // why: kept as text and parsed by parse_u64, which names the option
+  sub->add_option("--trial", trial, "trial index, 0 to 2^64-1 (default 0)")->type_name("UINT");
   sub->add_option("--trace", trace_path, "write the run's trace (.csv or .json)")
       ->check(not_empty());
   snapshot_option = sub->add_option("--snapshot-interval", snapshot_interval,

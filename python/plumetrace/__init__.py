@@ -1,7 +1,8 @@
 """plumetrace: odor-plume tracking simulator, from Python.
 
-The C++ core does the work; this package is a thin layer over it. Import path: the build's
-``build/python`` folder (``PYTHONPATH=build/python /usr/bin/python3``).
+The C++ core does the work; this package is a thin layer over it. Install it with
+``pip install --no-build-isolation --no-index .`` (README, "From Python"; docs/python.md), or use
+the build's copy: ``PYTHONPATH=build/python /usr/bin/python3``.
 
     import plumetrace as pt
     s = pt.Scenario()                      # the built-in defaults (the paper's setup)
@@ -9,19 +10,22 @@ The C++ core does the work; this package is a thin layer over it. Import path: t
     s["controller.algorithm"] = "casting"  # ... or by its dotted path
     r = pt.run(s, seed=1, trial=0)         # metrics as in `plumetrace run --json`
     r["trajectory"]["x"]                   # NumPy arrays
-    rows = pt.sweep("studies/lochmatter2008/sets/A.toml", runs=4)
-    rows.to_numpy()["success"]             # or rows.to_pandas() when pandas is installed
+    from plumetrace.studies import lochmatter2008 as paper
+    rows = pt.sweep(paper.sets["A"], runs=4)   # the paper's sets ship with the package
+    rows.to_numpy()["success"]             # or rows.to_pandas()
+    m = pt.probe(grid="arena")             # the plume alone: detection map as NumPy arrays
     rows = pt.sweep({"surge_cast.d_lost": [0.2, 0.6]}, runs=20)   # a sweep as a dict of axes
     rows.summary()                         # per point: Wilson 95% of success, t 95% of overhead
     pt.report(rows, out="out/mine")        # report.html, report.md, report.csv, figures/
 
-Submodules: ``plumetrace.controllers`` (write your own controller), ``plumetrace.env``
-(a Gymnasium-style environment), ``plumetrace.plots`` (matplotlib helpers),
-``plumetrace.report`` (the reproduction report, ``python3 -m plumetrace.report OUT_DIR``).
+Submodules: ``plumetrace.studies`` (the studies' sweep files), ``plumetrace.controllers`` (write
+your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plumetrace.plots``
+(matplotlib helpers), ``plumetrace.report`` (the reproduction report,
+``python3 -m plumetrace.report OUT_DIR``).
 """
 
 __all__ = ["ConfigError", "MAX_THREADS", "Scenario", "StoreError", "SweepRows", "algorithms",
-           "result_fields", "run", "sweep", "__version__"]
+           "probe", "result_fields", "run", "sweep", "__version__"]
 
 
 def __getattr__(name):

@@ -170,6 +170,81 @@ def _info(out):
     return {k: out[k] for k in ("title", "file", "seed", "runs_per_point", "axes") if k in out}
 
 
+def probe(scenario=None, points=None, grid=None, warmup=None, duration=60.0, interval=0.32,
+          seed=1, centreline=None, slab=0.2, overrides=None, **kwargs):
+    """The plume alone, sampled as `plumetrace probe` samples it (the same numbers, bit for
+    bit): over `duration` s after `warmup` s (None: the scenario's sim.warmup), every
+    `interval` s, with the plume of (seed, trial 0). Give `points` or `grid`:
+
+    - ``points``: an (N, 3) array of x, y, z (m). Returns ``points`` (N, 3) and, per point,
+      ``detect_fraction`` (the intermittency: the fraction of instants with concentration at
+      or above odor.threshold) and ``mean_concentration``, arrays of shape (N,);
+    - ``grid``: ``"arena"`` for the detection map's cells (0.2 x 0.05 m over the arena at the
+      odor sensor's height, as ``plumetrace probe --map``), or ``(x, y)`` or ``(x, y, z)`` with
+      1-D arrays of x and y (m) and a height z (default: odor.height). Returns ``x``, ``y``,
+      ``z`` and ``detect_fraction``, ``mean_concentration`` of shape (len(y), len(x)), ready
+      for ``plt.pcolormesh(m["x"], m["y"], m["detect_fraction"])``.
+
+    Both return ``samples`` (the instants sampled) and, with `centreline` (downwind positions
+    x, m), ``centrelines``: arrays ``x``, ``mean_y``, ``std_y``, ``samples``, ``empty`` of the
+    plume's centreline (the mean y of the filaments within `slab` / 2 of x; docs/model.md,
+    "Plume statistics"). `scenario`, `overrides` and keyword arguments as in run().
+    """
+    import numpy as np
+
+    path, settings = _settings(scenario, None, overrides, kwargs)
+    if (points is None) == (grid is None):
+        raise ValueError("probe: give either points= (an (N, 3) array) or grid= ('arena' or "
+                         "(x, y[, z])), not both or neither")
+    if points is not None:
+        xyz = _finite_array("points", points)
+        if xyz.ndim != 2 or xyz.shape[1] != 3 or xyz.shape[0] == 0:
+            raise ValueError(f"points: expected an (N, 3) array of x, y, z with N >= 1, got "
+                             f"shape {xyz.shape}")
+    elif isinstance(grid, str):
+        if grid != "arena":
+            raise ValueError(f"grid: expected 'arena' or (x, y[, z]), got {grid!r}")
+        x, y, z = _core.arena_grid(path, settings)
+    else:
+        try:
+            parts = list(grid)
+        except TypeError:
+            raise TypeError(f"grid: expected 'arena' or (x, y[, z]), got {grid!r}") from None
+        if len(parts) not in (2, 3):
+            raise ValueError(f"grid: expected 'arena' or (x, y[, z]), got {len(parts)} items")
+        x, y = (_finite_array(f"grid {n}", v).reshape(-1) for n, v in zip("xy", parts))
+        if x.size == 0 or y.size == 0:
+            raise ValueError("grid: x and y need at least one value each")
+        z = (float(_load_json(_core.resolve_json(path, settings))["odor"]["height"])
+             if len(parts) == 2 else _finite_number("grid z", parts[2]))
+    if points is None:
+        gx, gy = np.meshgrid(x, y)  # row-major by y, as the detection map
+        xyz = np.column_stack([gx.ravel(), gy.ravel(), np.full(gx.size, z)])
+    if warmup is not None:
+        warmup = _finite_number("warmup", warmup, low=0.0)
+    duration = _finite_number("duration", duration, low=0.0, strict=True)
+    interval = _finite_number("interval", interval, low=0.0, strict=True)
+    if interval > duration:
+        raise ValueError(f"interval ({interval}) must be at most duration ({duration}), or no "
+                         "sample is taken")
+    slab = _finite_number("slab", slab, low=0.0, strict=True)
+    xs = [] if centreline is None else list(_finite_array("centreline", centreline).reshape(-1))
+    out = _core.probe(path, settings, xyz, warmup, duration, interval,
+                      _whole("seed", seed, 0, 2**64 - 1), xs, slab)
+    result = {"samples": out["samples"]}
+    if points is None:
+        shape = (len(y), len(x))
+        result.update(x=np.asarray(x), y=np.asarray(y), z=float(z),
+                      detect_fraction=out["detect_fraction"].reshape(shape),
+                      mean_concentration=out["mean_concentration"].reshape(shape))
+    else:
+        result.update(points=xyz, detect_fraction=out["detect_fraction"],
+                      mean_concentration=out["mean_concentration"])
+    if centreline is not None:
+        result["centrelines"] = out["centrelines"]
+    return result
+
+
 class SweepRows:
     """The rows of a sweep as columns: ``rows["d_t"]``, ``rows.to_numpy()``, ``rows.to_pandas()``;
     ``rows.summary()`` for the statistics per point. ``rows.info``: the sweep's title, file,
@@ -253,6 +328,28 @@ def _whole(name, value, lo, hi):
     value = int(value)
     if not lo <= value <= hi:
         raise ValueError(f"{name} must be an int from {lo} to {hi}, got {value}")
+    return value
+
+
+def _finite_array(name, value):
+    import numpy as np
+
+    try:
+        array = np.array(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name}: expected numbers, got {value!r}") from None
+    if not np.all(np.isfinite(array)):
+        raise ValueError(f"{name}: every value must be a finite number (m)")
+    return array
+
+
+def _finite_number(name, value, low=None, strict=False):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a number, got {type(value).__name__} {value!r}")
+    value = float(value)
+    if not math.isfinite(value) or (low is not None and (value <= low if strict else value < low)):
+        bound = "" if low is None else f" {'>' if strict else '>='} {low:g}"
+        raise ValueError(f"{name} must be a finite number{bound}, got {value}")
     return value
 
 

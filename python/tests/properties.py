@@ -382,12 +382,15 @@ env_actions = st.one_of(st.floats(), st.integers(), st.lists(st.floats(), max_si
 
 @bounded(150)
 @given(st.one_of(st.integers(0, 2**64 - 1), st.integers(), st.floats(), st.none()),
-       st.lists(env_actions, max_size=40))
-def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions):
+       st.lists(st.one_of(env_actions, st.integers(-2, 5)), max_size=40), st.integers(1, 20),
+       st.sampled_from([None, 1, 4]))
+def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions, interval,
+                                                                  headings):
     from plumetrace.env import PlumeEnv
 
-    show("env", (seed, actions))
-    env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=2.0)
+    show("env", (seed, actions, interval, headings))
+    env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=2.0, decision_interval=interval,
+                   discrete_headings=headings)
     try:
         env.reset(seed=seed)
     except (TypeError, ValueError) as e:
@@ -402,6 +405,6 @@ def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions):
         except RuntimeError as e:
             assert "reset()" in str(e)
             break
-        assert obs.shape == (7,) and np.all(np.isfinite(obs[1:5]))
+        assert obs.shape == (8,) and obs in env.observation_space and np.all(np.isfinite(obs))
         wind = env.measure_wind()
         assert all(math.isfinite(w) for w in wind)

@@ -1,64 +1,270 @@
-"""The Gymnasium-style environment: conventions, determinism, and equality with the runner."""
+"""The environment: its options, decisions, seeding, rendering, and equality with the runner."""
 
 import math
 
-import numpy as np
-import pytest
+import matplotlib
+
+matplotlib.use("Agg")
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 
 from conftest import plumetrace_with_core  # noqa: E402
 
 pt = plumetrace_with_core()
+from plumetrace.controllers import Command  # noqa: E402
 from plumetrace.env import PlumeEnv  # noqa: E402
 
 
 def test_reset_and_step_follow_gymnasium_conventions():
     env = PlumeEnv()
     obs, info = env.reset(seed=3)
-    assert env.observation_space.contains(obs) and obs.shape == (7,)
+    assert obs.dtype == np.float32 and obs.shape == (8,) and env.observation_space.contains(obs)
     assert obs[0] in (0.0, 1.0) and obs[1:5].tolist() == [0.0, 0.0, 0.0, 0.0]
+    assert obs[7] == obs[0]  # one sensing so far
     assert env.action_space.contains(env.action_space.sample())
-    obs, reward, terminated, truncated, info = env.step(0.0)
-    assert isinstance(reward, float) and not terminated and not truncated
-    assert info["time"] == pytest.approx(0.032)
+    obs, reward, terminated, truncated, step_info = env.step(0.0)
+    assert type(reward) is float and terminated is False and truncated is False
+    # a decision is 8 simulation steps of 0.032 s
+    assert env.dt == pytest.approx(8 * 0.032)
+    assert step_info["time"] - info["time"] == pytest.approx(env.dt)
     assert obs[4] > 0.0  # it drove
+
+
+def test_options_of_the_environment_are_not_config_keys():
+    # render_mode and the other options used to reach the scenario as unknown config keys
+    env = PlumeEnv(render_mode="rgb_array", decision_interval=2, discrete_headings=4,
+                   wind_every_step=False, reward_fn=lambda info: 0.0, wind_sensor__sigma_a=0.3)
+    obs, _ = env.reset(seed=1)
+    assert env.config["wind_sensor"]["sigma_a"] == 0.3 and obs[5] == obs[6] == 0.0
+    assert env.render().shape[2] == 3
+    # config keys are checked when the environment is made, not at its first reset
+    with pytest.raises(pt.ConfigError, match="wind.vxx"):
+        PlumeEnv(wind__vxx=1.0)
+    with pytest.raises(pt.ConfigError, match="render_modes"):
+        PlumeEnv(overrides={"render_modes": 1})
+    with pytest.raises(ValueError, match="render_mode"):
+        PlumeEnv(render_mode="rgb")
+    with pytest.raises(ValueError, match="decision_interval"):
+        PlumeEnv(decision_interval=0)
+    with pytest.raises(TypeError, match="decision_interval"):
+        PlumeEnv(decision_interval=2.5)
+    with pytest.raises(ValueError, match="discrete_headings"):
+        PlumeEnv(discrete_headings=0)
+    with pytest.raises(TypeError, match=r"reset\(seed=...\)"):
+        PlumeEnv(seed=1)
 
 
 def test_driving_upwind_from_the_start_reaches_the_wall_or_source():
     # heading 0 in the odometry frame is the robot's start heading: upwind
     env = PlumeEnv(robot__start_x=4.0)
     env.reset(seed=1)
-    steps, done = 0, False
+    decisions, done, total = 0, False, 0.0
     while not done:
         obs, reward, terminated, truncated, info = env.step(np.array([0.0]))
         done = terminated or truncated
-        steps += 1
-    assert info["outcome"] in ("success", "wall")
-    assert reward == float(info["outcome"] == "success")
-    assert info["result"]["steps"] == steps
+        decisions += 1
+        total += reward
+    assert info["outcome"] in ("success", "wall") and terminated and not truncated
+    assert total == float(info["outcome"] == "success")
+    # the last decision may end within its 8 steps
+    assert 8 * (decisions - 1) < info["result"]["steps"] <= 8 * decisions
     # 3 m upwind at 0.106 m/s and 0.032 s per step: about 885 steps
     assert abs(info["pose"][0] - 1.0) < 0.3 or info["outcome"] == "wall"
+    assert info["source_distance"] == pytest.approx(math.hypot(info["pose"][0] - 1.0,
+                                                               info["pose"][1]))
 
 
 def test_the_same_seed_and_trial_replay_exactly_and_trials_count_up():
     env = PlumeEnv()
+
     def episode(**reset):
         obs, info = env.reset(**reset)
         trace = [obs]
-        for k in range(200):
-            obs, *_ = env.step(math.sin(k / 20.0))
+        for k in range(40):
+            obs, *_ = env.step(math.sin(k / 3.0))
             trace.append(obs)
         return np.array(trace), info["trial"]
     a, trial_a = episode(seed=5)
     b, trial_b = episode()
     c, trial_c = episode(seed=5)
-    assert (trial_a, trial_b, trial_c) == (0, 1, 0)
-    assert np.array_equal(a, c) and not np.array_equal(a, b)
+    d, trial_d = episode(options={"trial": 1})
+    assert (trial_a, trial_b, trial_c, trial_d) == (0, 1, 0, 1)
+    assert np.array_equal(a, c) and np.array_equal(b, d) and not np.array_equal(a, b)
+
+
+def test_reset_seeds_np_random_as_gymnasium_and_an_unseeded_reset_draws_a_replayable_seed():
+    env = PlumeEnv()
+    env.reset(seed=5)
+    expected = np.random.Generator(np.random.PCG64(np.random.SeedSequence(5)))
+    assert env.np_random.bit_generator.state == expected.bit_generator.state
+    env.reset()  # the next trial: np_random is left alone
+    assert env.np_random.bit_generator.state == expected.bit_generator.state
+
+    # no seed at all: a fresh one from entropy, in info, that replays the episode
+    first, info = PlumeEnv().reset()
+    other, other_info = PlumeEnv().reset()
+    assert info["seed"] != other_info["seed"] and info["trial"] == 0
+    again, _ = PlumeEnv().reset(seed=info["seed"])
+    assert np.array_equal(first[:5], again[:5])
+    with pytest.raises(ValueError, match="seed"):
+        env.reset(seed=-1)
+    with pytest.raises(TypeError, match="seed"):
+        env.reset(seed=1.5)
+
+
+def test_a_seeded_random_policy_replays_exactly():
+    def episode(space_seed, decisions=150):
+        env = PlumeEnv()
+        env.action_space.seed(space_seed)
+        obs, _ = env.reset(seed=11)
+        trace, actions = [obs], []
+        for _ in range(decisions):
+            action = env.action_space.sample()
+            obs, reward, terminated, truncated, info = env.step(action)
+            trace.append(obs)
+            actions.append(action)
+            assert env.observation_space.contains(obs)
+            if terminated or truncated:
+                break
+        return np.array(trace), np.array(actions)
+    a, actions_a = episode(7)
+    b, actions_b = episode(7)
+    c, actions_c = episode(8)
+    assert np.array_equal(actions_a, actions_b) and np.array_equal(a, b)
+    assert not np.array_equal(actions_a, actions_c) and not np.array_equal(a, c)
+
+
+@pytest.mark.parametrize("k", [2, 5, 8])
+def test_a_decision_of_k_steps_is_k_single_steps_of_the_same_action(k):
+    # with a per-step reward: the rewards add up, and the episode's return does not depend on k
+    def reward_fn(info):
+        return -info["source_distance"] * 0.001 + 10.0 * (info["outcome"] == "success")
+
+    one = PlumeEnv(decision_interval=1, wind_every_step=False, reward_fn=reward_fn,
+                   robot__start_x=4.0)
+    many = PlumeEnv(decision_interval=k, wind_every_step=False, reward_fn=reward_fn,
+                    robot__start_x=4.0)
+    obs_1, _ = one.reset(seed=2, options={"trial": 3})
+    obs_k, _ = many.reset(seed=2, options={"trial": 3})
+    assert np.array_equal(obs_1, obs_k)
+    returns, odor_fractions = [0.0, 0.0], set()
+    for decision in range(10000):
+        action = 0.6 * math.sin(decision / 7.0)  # a wavy path upwind, into the plume
+        odors, sum_1 = [], 0.0
+        for _ in range(k):
+            obs_1, r_1, term_1, trunc_1, info_1 = one.step(action)
+            sum_1 += r_1
+            odors.append(obs_1[0])
+            if term_1 or trunc_1:
+                break
+        obs_k, r_k, term_k, trunc_k, info_k = many.step(action)
+        assert np.array_equal(obs_1[:7], obs_k[:7]), decision
+        assert obs_k[7] == np.float32(np.mean(odors)) or term_k
+        assert r_k == pytest.approx(sum_1, rel=1e-12, abs=1e-12)
+        assert (term_1, trunc_1) == (term_k, trunc_k)
+        assert {key: info_1[key] for key in ("time", "outcome", "pose")} == \
+            {key: info_k[key] for key in ("time", "outcome", "pose")}
+        returns[0] += sum_1
+        returns[1] += r_k
+        odor_fractions.add(float(obs_k[7]))
+        if term_k or trunc_k:
+            break
+    assert info_1["result"] == info_k["result"]  # every metric of the run
+    assert info_k["outcome"] in ("success", "wall") and returns[0] == pytest.approx(returns[1])
+    # the path met the plume's edge: decisions with some, but not all, of their steps in odor
+    assert any(0.0 < f < 1.0 for f in odor_fractions)
+
+
+def test_discrete_headings_drive_along_equally_spaced_headings():
+    env = PlumeEnv(discrete_headings=4)
+    assert env.action_space.n == 4 and env.action_space.shape == ()
+    env.reset(seed=1)
+    for action, heading in [(1, math.pi / 2), (3, -math.pi / 2), (0, 0.0)]:
+        for _ in range(6):  # 1.5 s: time to turn by pi on the spot (2.4 rad/s)
+            obs, *_ = env.step(action)
+        assert obs[3] == pytest.approx(heading, abs=1e-6)
+    for _ in range(6):
+        obs, *_ = env.step(np.int64(2))
+    assert abs(obs[3]) == pytest.approx(math.pi, abs=1e-6)
+    before = obs[4]
+    obs, *_ = env.step(Command.stop())  # a Command is still an action
+    assert obs[4] == before
+    for bad in (4, -1, 1.0, True, "1", [1, 2]):
+        with pytest.raises(TypeError, match="action"):
+            env.step(bad)
+
+
+def test_observations_reach_their_bounds_only_within_them():
+    # a long straight drive in a long arena: the odometer nears its bound (the path length a
+    # run can have) and stays inside it, as does every observation of a random walk
+    env = PlumeEnv(arena__x_max=100.0, robot__start_x=99.0, supervisor__timeout=60.0,
+                   decision_interval=16)
+    obs, _ = env.reset(seed=1)
+    done = False
+    while not done:
+        obs, _, terminated, truncated, info = env.step(0.0)
+        assert env.observation_space.contains(obs)
+        done = terminated or truncated
+    assert truncated and obs[4] > 0.99 * env.observation_space.high[4]
+    # heading 0 of the odometry frame is the start heading: the drive is along +x there
+    assert obs[1] > 0.99 * env.observation_space.high[1]
+
+
+def test_rgb_array_frames_show_the_robot_where_it_is():
+    def frames(action, decisions=30):
+        env = PlumeEnv(render_mode="rgb_array")
+        env.reset(seed=4)
+        first = env.render()
+        for _ in range(decisions):
+            env.step(action)
+        return first, env.render(), env.render()
+    first, moved, again = frames(0.0)
+    assert moved.shape == (320, 960, 3) and moved.dtype == np.uint8
+    assert np.array_equal(moved, again)  # drawing does not change the state
+    _, stopped, _ = frames(Command.stop())
+    _, stopped_again, _ = frames(Command.stop())
+    # the same plume (same seed and trial): only the robot differs between the two runs
+    assert np.array_equal(stopped, stopped_again)
+    # the arena's rows (below the title, which names the odor state, and above the x labels)
+    diff = np.any(moved != stopped, axis=2)[int(0.13 * 320):int(0.83 * 320)]
+    assert diff.any()
+    # the robot starts at x = 15.5 of 16 m and drove 0.8 m upwind: the change is in the
+    # right-hand part of the arena (columns by x)
+    columns = np.flatnonzero(diff.any(axis=0))
+    assert columns.min() > 0.7 * 960 and columns.max() < 0.99 * 960
+    assert not np.array_equal(first, moved)  # and the plume moved on
+
+
+def test_human_rendering_draws_a_figure_and_returns_none_headless():
+    import matplotlib.pyplot as plt
+
+    before = set(plt.get_fignums())
+    env = PlumeEnv(render_mode="human")
+    env.reset(seed=1)  # renders, as Gymnasium's human mode does at reset and step
+    figures = set(plt.get_fignums()) - before
+    assert len(figures) == 1
+    fig = plt.figure(figures.pop())
+    robot_path = fig.axes[0].get_lines()[0]
+    env.step(0.0)
+    assert env.render() is None
+    assert len(robot_path.get_xdata()) == 1 + 8  # the release point and 8 steps
+    assert len(fig.axes[0].collections[0].get_offsets()) == 1600  # the filaments
+    env.close()
+    env.close()  # closing twice is allowed
+    assert set(plt.get_fignums()) == before
+
+
+def test_render_without_a_mode_warns_and_returns_none():
+    env = PlumeEnv()
+    env.reset(seed=1)
+    with pytest.warns(UserWarning, match="render_mode"):
+        assert env.render() is None
 
 
 def test_surge_cast_driving_the_environment_gets_the_built_in_run():
     # the environment is the runner's loop split in two: an agent that decides like the
     # built-in surge-cast (examples/python_surge_cast.py, fed from the observation array and
-    # sampling the wind on demand) reproduces the built-in run exactly
+    # sampling the wind on demand) reproduces the built-in run exactly, one decision per step
     import importlib.util
     from pathlib import Path
     from types import SimpleNamespace
@@ -69,14 +275,16 @@ def test_surge_cast_driving_the_environment_gets_the_built_in_run():
     spec.loader.exec_module(example)
 
     for trial in range(3):
-        env = PlumeEnv(wind_every_step=False, wind_sensor__sigma_a=0.3)
-        obs, _ = env.reset(seed=4, options={"trial": trial})
+        env = PlumeEnv(decision_interval=1, wind_every_step=False, wind_sensor__sigma_a=0.3)
+        obs, info = env.reset(seed=4, options={"trial": trial})
         from plumetrace.controllers import controller_rng
         agent = example.SurgeCast(pt.Scenario().to_dict(), controller_rng(4, trial))
         wind = SimpleNamespace(measure_wind_body=env.measure_wind)
         while True:
-            seen = SimpleNamespace(odor=bool(obs[0]), odometer=obs[4], time=0.0,
-                                   odometry=SimpleNamespace(x=obs[1], y=obs[2], heading=obs[3]))
+            # the odometry at full precision (the observation rounds it to float32)
+            x, y, heading = info["odometry"]
+            seen = SimpleNamespace(odor=bool(obs[0]), odometer=info["odometer"], time=0.0,
+                                   odometry=SimpleNamespace(x=x, y=y, heading=heading))
             obs, _, terminated, truncated, info = env.step(agent.step(seen, wind))
             if terminated or truncated:
                 break

@@ -513,3 +513,21 @@ def test_elapsed_line_says_how_many_runs_came_from_the_store():
         {"elapsed_s": 55.0, "computed_runs": 100, "total_runs": 100})
     text = data._elapsed_text({"elapsed_s": 0.0, "computed_runs": 0, "total_runs": 20850})
     assert "0 runs computed by this command" in text and "20850 read from the results store" in text
+
+
+def test_the_regenerate_lines_are_the_commands_the_readme_gives(built):
+    out, _ = built
+    md = (out / "report.md").read_text()
+    page_html = (out / "report.html").read_text()
+    # the command that made the report, then the one that redraws it alone from summary.json
+    redraw = report.page.report_command(out)
+    assert redraw == f"python3 -m plumetrace.report {out}"
+    assert f"plumetrace reproduce --runs 20 --out out/test\n{redraw}\n" in md
+    assert html.escape(f"plumetrace reproduce --runs 20 --out out/test\n{redraw}") in page_html
+    assert "PYTHONPATH" not in md
+    # the README gives the same command for its output folder, in a shell block
+    readme = (PYTHON_DIR.parent / "README.md").read_text()
+    blocks = re.findall(r"```sh\n(.*?)```", readme, re.S)
+    assert any(report.page.report_command("out") in b.splitlines() for b in blocks)
+    # a folder name with a space stays one word
+    assert report.page.report_command("my out") == "python3 -m plumetrace.report 'my out'"

@@ -10,6 +10,9 @@
 // why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
 // operations that round identically at every width, so every version gives the same bits
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
+    !defined(PLUMETRACE_NO_VECTOR_CLONES) && defined(PLUMETRACE_NO_AVX512)
+#define PLUMETRACE_VECTOR_CLONES __attribute__((target_clones("default", "arch=x86-64-v3")))
+#elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
     !defined(PLUMETRACE_NO_VECTOR_CLONES)
 #define PLUMETRACE_VECTOR_CLONES \
   __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -122,18 +125,40 @@ void block_boxes(const double* x, const double* y, std::size_t n, std::size_t bl
 
 namespace loops {
 
-PLUMETRACE_VECTOR_CLONES
-void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
-                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
-                     std::uint64_t key, double stddev, double gamma) {
-  const double dx = d.x, dy = d.y, dz = d.z, half_gamma = 0.5 * gamma;
+namespace {
+
+// the drift, walk and growth of x, y and w; inlined into each clone of drift_walk_grow
+template <bool kArea>
+[[gnu::always_inline]] inline void walk_grow(double* __restrict x, double* __restrict y,
+                                             double* __restrict w, double* __restrict h,
+                                             std::int64_t n, double dx, double dy,
+                                             std::uint64_t key, double stddev, double gamma) {
+  const double half_gamma = 0.5 * gamma;
   for (std::int64_t i = 0; i < n; ++i) {
     float a, b;
     vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * i)), a, b);
     x[i] += dx + stddev * static_cast<double>(a);
     y[i] += dy + stddev * static_cast<double>(b);
-    w[i] += half_gamma * h[i];
+    if constexpr (kArea) {
+      w[i] = std::sqrt(w[i] * w[i] + gamma);
+    } else {
+      w[i] += half_gamma * h[i];
+    }
     h[i] = 1.0 / w[i];
+  }
+}
+
+}  // namespace
+
+PLUMETRACE_VECTOR_CLONES
+void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
+                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
+                     std::uint64_t key, double stddev, double gamma, bool area) {
+  const double dz = d.z;
+  if (area) {
+    walk_grow<true>(x, y, w, h, n, d.x, d.y, key, stddev, gamma);
+  } else {
+    walk_grow<false>(x, y, w, h, n, d.x, d.y, key, stddev, gamma);
   }
   const std::int64_t half = n / 2;
   double* __restrict z2 = z + half;
@@ -181,6 +206,10 @@ PlumeParams plume_preset(PlumePreset preset) {
 }
 
 double walk_stddev(const PlumeParams& params, double dt) {
+  // why: a white-noise velocity of diffusivity D moves a point by a normal of variance 2 D dt
+  // per axis in dt (Farrell et al. 2002; docs/model.md section 4.3)
+  if (params.dispersion == Dispersion::kFarrell)
+    return std::sqrt(2.0 * params.relative_diffusivity * dt);
   switch (params.noise_mode) {
     case NoiseMode::kVelocity:
       return params.sigma_p * dt;
@@ -190,6 +219,10 @@ double walk_stddev(const PlumeParams& params, double dt) {
       return params.sigma_p * std::sqrt(dt);
   }
   return 0.0;
+}
+
+double width_growth(const PlumeParams& params, double dt) {
+  return params.dispersion == Dispersion::kFarrell ? params.spread_rate * dt : params.gamma;
 }
 
 double kernel_value(const PlumeParams& params, double w, double d2) {
@@ -246,7 +279,7 @@ void FilamentPlume::move(const WindField& wind, double dt) {
   const std::uint64_t key = rng_.next_u64();
   loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
                          static_cast<std::int64_t>(n), drift, key, walk_stddev(params_, dt),
-                         params_.gamma);
+                         width_growth(params_, dt), params_.dispersion == Dispersion::kFarrell);
   if (params_.lifetime == Lifetime::kLeaveArena) {
     // stable compaction keeps the order, so sums stay reproducible
     std::size_t kept = 0;

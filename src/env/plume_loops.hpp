@@ -12,13 +12,13 @@ namespace plumetrace::loops {
 
 /// One step of filaments 0..n-1: drift d (the wind's displacement, zero where the caller has
 /// moved them already), random walk of standard deviation `stddev` and width growth (paper
-/// eqs. 2 and 3; w += gamma / (2 w) computed as w += (gamma / 2) h, then h = 1 / w, kept for the
-/// concentration). Normals: the Box-Muller pair of counter 2i gives (x, y) of filament i, that
+/// eqs. 2 and 3; w += gamma / (2 w) computed as w += (gamma / 2) h or, with `area`, Farrell et
+/// al.'s w = sqrt(w^2 + gamma); then h = 1 / w, kept for the concentration). Normals: the Box-Muller pair of counter 2i gives (x, y) of filament i, that
 /// of counter 2j + 1 the z of filaments j and j + n / 2 (and of counter n the z of the last
 /// filament when n is odd); each counter c is hashed as mix64(key + c * kGamma).
 void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
                      double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
-                     std::uint64_t key, double stddev, double gamma);
+                     std::uint64_t key, double stddev, double gamma, bool area = false);
 
 /// The concentration of each of m filaments at u (0 at or beyond the cut-off), given their
 /// inverse widths h and the kernel's amount factor `scale`; cut2 is the squared cut-off.

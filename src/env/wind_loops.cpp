@@ -160,7 +160,11 @@ bool available(Path path) {
     case Path::kAvx2:
       return __builtin_cpu_supports("avx2");
     case Path::kAvx512:
+#ifdef PLUMETRACE_NO_AVX512
+      return false;
+#else
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
+#endif
 #else
     case Path::kAvx2:
     case Path::kAvx512:

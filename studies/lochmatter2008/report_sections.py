@@ -16,7 +16,8 @@ from plumetrace.report.data import (DASH, SENSITIVITY_NAME, Point, SweepSet, _el
 from plumetrace.report.figures import (claims_matrix_figure, failures_figure,
                                        readings_map_figure, readings_success_figure, set_figure,
                                        sensitivity_figure, trajectory_figure)
-from plumetrace.report.page import Bullets, Cell, Para, Pre, Section, Table, _doc_link, _fig
+from plumetrace.report.page import (Bullets, Cell, Para, Pre, Section, Table, _doc_link, _fig,
+                                    report_command)
 
 # The paper's three algorithms, in the order of its figures.
 ALGORITHMS = ("casting", "surge-spiral", "surge-cast")
@@ -565,9 +566,11 @@ def _reproducibility_section(summary: dict, out_dir: Path) -> Section:
                       ("code", fmt_raw_int(t.get("trial"))), ", seed ",
                       ("code", fmt_raw_int(t.get("seed")))])
     blocks.append(Bullets(items))
-    blocks.append(Para(["To regenerate the results and this report:"]))
+    blocks.append(Para(["To regenerate the results and this report (the runs already in the "
+                        "store are not run again), then this report alone from its summary.json "
+                        "(with the Python package installed, README \"From Python\"):"]))
     command = summary.get("generated_by") or "plumetrace reproduce ..."
-    blocks.append(Pre(f"{command}\nPYTHONPATH=python python3 -m plumetrace.report {out_dir}", "sh"))
+    blocks.append(Pre(f"{command}\n{report_command(out_dir)}", "sh"))
     sweeps = summary.get("sweeps") or []
     if sweeps:
         blocks.append(Para(["Sweep definitions:"]))

@@ -96,7 +96,7 @@ class StudyReader {
 }  // namespace
 
 std::string default_study_file() {
-  return std::string(cli::kSourceDir) + "/studies/lochmatter2008/study.toml";
+  return cli::data_dir() + "/studies/lochmatter2008/study.toml";
 }
 
 Study read_study(const std::string& path) {

@@ -32,6 +32,16 @@ enum class NoiseMode {
   kWiener,    ///< std sigma_p * sqrt(dt) (sigma_p in m/sqrt(s)), time-step consistent
 };
 
+/// How filaments spread relative to the wind (docs/model.md section 4.3).
+enum class Dispersion {
+  /// the paper's eqs. 2-3: a random walk of plume.sigma_p scaled by plume.noise_mode, and
+  /// w += plume.gamma / (2 w) per step
+  kPaper,
+  /// Farrell et al. (2002)'s relative dispersion: each centre takes a white-noise velocity of
+  /// diffusivity plume.relative_diffusivity, and w^2 grows at plume.spread_rate
+  kFarrell,
+};
+
 /// How filaments leave the simulation.
 enum class Lifetime {
   kRing,        ///< fixed ring buffer of `capacity` filaments; a new one overwrites the oldest
@@ -89,6 +99,16 @@ struct PlumeParams {
   double sigma_p = 0.02;
   /// Width growth constant per step (m^2): w += gamma / (2 w).
   double gamma = 4e-7;
+  /// Which relative dispersion moves and widens the filaments: the paper's rows above (sigma_p,
+  /// noise_mode, gamma) or Farrell et al.'s (the two rows below).
+  Dispersion dispersion = Dispersion::kPaper;
+  /// Farrell: diffusivity of each centre's white-noise velocity (m^2/s); one step moves it by a
+  /// normal of standard deviation sqrt(2 D dt) per axis. why: 6.4e-6, the paper rows' walk at
+  /// the default sim.dt 0.032 s, (0.02 m/s x 0.032 s)^2 / (2 x 0.032 s) (docs/model.md 4.3).
+  double relative_diffusivity = 6.4e-6;
+  /// Farrell: growth rate of the squared width (m^2/s); one step sets w = sqrt(w^2 + rate dt).
+  /// why: 1.25e-5, the paper rows' gamma at the default sim.dt, 4e-7 m^2 / 0.032 s.
+  double spread_rate = 1.25e-5;
   /// How filaments leave.
   Lifetime lifetime = Lifetime::kRing;
   /// Ring-buffer size (filaments), used with Lifetime::kRing.
@@ -111,6 +131,16 @@ struct PlumeParams {
     v("sigma_p", sigma_p, "random-walk intensity (m/s, m or m/sqrt(s) by noise_mode)",
       kNonNegative);
     v("gamma", gamma, "width growth per step: w += gamma / (2 w) (m^2)", kNonNegative);
+    v("dispersion", dispersion,
+      "relative dispersion: paper (sigma_p, noise_mode, gamma) or farrell "
+      "(relative_diffusivity, spread_rate)",
+      {"paper", "farrell"});
+    v("relative_diffusivity", relative_diffusivity,
+      "dispersion = farrell: diffusivity of each filament centre's white-noise velocity (m^2/s)",
+      NumberSpec{.min = 0.0, .max = 100.0});
+    v("spread_rate", spread_rate,
+      "dispersion = farrell: growth rate of a filament's squared width (m^2/s)",
+      NumberSpec{.min = 0.0, .max = 100.0});
     v("lifetime", lifetime, "how filaments leave", {"ring", "leave_arena"});
     v("capacity", capacity, "ring-buffer size (filaments), lifetime = ring",
       IntegerSpec{1, kMaxCapacity});
@@ -125,6 +155,10 @@ PlumeParams plume_preset(PlumePreset preset);
 
 /// Standard deviation (m) of one random-walk component per step.
 double walk_stddev(const PlumeParams& params, double dt);
+
+/// How much one step of dt (s) widens a filament: gamma (m^2) of w += gamma / (2 w) for the
+/// paper's dispersion, rate dt (m^2) of w = sqrt(w^2 + rate dt) for Farrell's.
+double width_growth(const PlumeParams& params, double dt);
 
 /// Concentration contributed by one filament of width w (m) at squared distance d2 (m^2).
 double kernel_value(const PlumeParams& params, double w, double d2);

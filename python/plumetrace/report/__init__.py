@@ -1,7 +1,7 @@
 """The reports: the paper's reproduction (this package) and any sweep's (report/sweep.py).
 
-    PYTHONPATH=python python3 -m plumetrace.report OUT_DIR          # the paper's
-    plumetrace.report(rows_or_sweep, store=..., out=...)           # any sweep's, from Python
+    python3 -m plumetrace.report OUT_DIR    (the package installed; docs/report.md): the paper's
+    plumetrace.report(rows_or_sweep, store=..., out=...)    any sweep's, from Python
 
 reads OUT_DIR/summary.json (and OUT_DIR/sensitivity.json when it exists) and writes
 OUT_DIR/report.html (self-contained: every figure is embedded as a data URI), OUT_DIR/report.md

@@ -6,6 +6,7 @@ from __future__ import annotations
 import base64
 import html
 import os
+import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional, Sequence, Union
@@ -251,6 +252,12 @@ def _fig(out_dir: Path, path: Path, caption: str, alt: str) -> Fig:
 REPO_ROOT = next((p for p in Path(__file__).resolve().parents[2:5]
                   if (p / "docs").is_dir() and (p / "studies").is_dir()),
                  Path(__file__).resolve().parents[3])
+
+
+def report_command(out_dir: Union[str, Path]) -> str:
+    """The command that redraws a report from its folder's summary.json, as the README gives it
+    (the package installed: README, "From Python")."""
+    return f"python3 -m plumetrace.report {shlex.quote(str(out_dir))}"
 
 
 def _doc_link(out_dir: Path, rel: str) -> tuple:

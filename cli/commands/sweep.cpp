@@ -250,7 +250,9 @@ CLI::App* SweepCommand::add(CLI::App& app) {
                   "compute only part I of N (I/N, e.g. 2/8) for job arrays; merge the parts' "
                   "stores with plumetrace merge");
   sub->add_flag("--quiet", quiet, "no progress bar");
-  sub->add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
+  sub->add_flag("--fresh", fresh,
+                "discard every run the store holds (needed only when the base scenario, a --set or "
+                "the seed changed; a sweep given more values keeps its stored runs)");
   sub->add_flag("--no-share-plumes", no_share,
                 "simulate the plume anew for every run (same results, slower)");
   return sub;

@@ -9,16 +9,16 @@
 
 namespace plumetrace::cli {
 
-namespace {
-
-// `text` as one word of a POSIX shell, for messages a user may paste
 std::string shell_word(const std::string& text) {
+  // why: plain words stay as they are, so that the commands read as a user types them
+  const bool plain = !text.empty() && text.find_first_not_of(
+                                          "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                          "0123456789_-./=:,+@%") == std::string::npos;
+  if (plain) return text;
   std::string out = "'";
   for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
 }
-
-}  // namespace
 
 bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep>& sweeps,
                        Store& store, int runs, const CampaignFlags& flags, CampaignResult& result,
@@ -41,14 +41,48 @@ bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep
   return false;
 }
 
-int draw_report(const std::string& out, const std::string& module) {
+std::string extra_options(const std::vector<std::string>& sets, int runs) {
+  std::string text;
+  for (const auto& s : sets) text += " --set " + shell_word(s);
+  if (runs > 0) text += " --runs " + std::to_string(runs);
+  return text;
+}
+
+void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
+                     const std::vector<IncompletePoint>& incomplete, const std::string& store,
+                     const std::string& extra) {
+  for (const auto& sweep : sweeps) {
+    std::vector<const IncompletePoint*> mine;
+    for (const auto& p : incomplete) {
+      if (p.sweep == sweep.def.name) mine.push_back(&p);
+    }
+    if (mine.empty()) continue;
+    std::fprintf(stderr,
+                 "plumetrace: warning: %zu of %zu points of sweep %s have runs missing in '%s':\n",
+                 mine.size(), sweep.points.size(), sweep.def.name.c_str(), store.c_str());
+    for (std::size_t k = 0; k < mine.size() && k < 10; ++k) {
+      std::fprintf(stderr, "  (%s): %lld of %d runs\n", mine[k]->values.c_str(),
+                   static_cast<long long>(mine[k]->stored), mine[k]->runs);
+    }
+    if (mine.size() > 10) std::fprintf(stderr, "  and %zu more\n", mine.size() - 10);
+    const std::string file = sweep.def.file.empty() ? "SWEEP.toml" : shell_word(sweep.def.file);
+    std::fprintf(stderr, "  compute them with: plumetrace sweep %s --store %s%s\n", file.c_str(),
+                 shell_word(store).c_str(), extra.c_str());
+  }
+}
+
+int draw_report(const std::string& out, const std::string& module,
+                const std::vector<std::string>& args) {
   const std::string python_path = data_dir() + "/python";
   // what the report prints follows what was printed here
   std::fflush(nullptr);
-  const int rc = run_program({kPython, "-m", module, out}, {"PYTHONPATH=" + python_path});
+  std::vector<std::string> argv{kPython, "-m", module, out};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const int rc = run_program(argv, {"PYTHONPATH=" + python_path});
   if (rc != 0) {
-    const std::string command = "PYTHONPATH=" + shell_word(python_path) + " " +
-                                shell_word(kPython) + " -m " + module + " " + shell_word(out);
+    std::string command = "PYTHONPATH=" + shell_word(python_path) + " " + shell_word(kPython) +
+                          " -m " + module + " " + shell_word(out);
+    for (const auto& a : args) command += " " + shell_word(a);
     std::fprintf(stderr,
                  "plumetrace: error: drawing the report failed (%s); the results are kept in "
                  "%s/\n",

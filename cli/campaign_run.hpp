@@ -16,8 +16,23 @@ bool run_with_progress(const std::string& label, const std::vector<ExpandedSweep
                        Store& store, int runs, const CampaignFlags& flags, CampaignResult& result,
                        const Shard& shard = {}, const TaskRunner& runner = {});
 
-/// Draws report.html and report.md from the results in OUT (python -m MODULE OUT; the paper's
-/// report by default); returns 0, or kIoFailure after saying that it failed.
-int draw_report(const std::string& out, const std::string& module = "plumetrace.report");
+/// The options that give a command these --set values and --runs (0: none), for a command a
+/// user may paste: " --set 'a=1' --runs 20".
+std::string extra_options(const std::vector<std::string>& sets, int runs);
+
+/// Says on stderr which points of the campaign have runs missing in the store at `store`, and
+/// the command that computes them (`sweep FILE --store STORE`, with `extra` options such as
+/// --set); says nothing when every point is complete. At most 10 points are named per sweep.
+void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
+                     const std::vector<IncompletePoint>& incomplete, const std::string& store,
+                     const std::string& extra);
+
+/// Draws report.html and report.md from the results in OUT (python -m MODULE OUT ARGS...; the
+/// paper's report by default); returns 0, or kIoFailure after saying that it failed.
+int draw_report(const std::string& out, const std::string& module = "plumetrace.report",
+                const std::vector<std::string>& args = {});
+
+/// `text` as one word of a POSIX shell, for commands a user may paste.
+std::string shell_word(const std::string& text);
 
 }  // namespace plumetrace::cli

@@ -39,14 +39,15 @@ int main(int argc, char** argv) {
   ConfigCommand config;
   SweepCommand sweep;
   ExportCommand export_store;
+  ReportCommand report;
   MergeCommand merge;
   ReproduceCommand reproduce(command_line(argc, argv));
   SensitivityCommand sensitivity;
   StudyCommand study;
   std::vector<std::pair<CLI::App*, Command*>> commands;
   for (Command* c :
-       std::initializer_list<Command*>{&run, &view, &probe, &config, &sweep, &export_store, &merge,
-                                       &reproduce, &sensitivity, &study}) {
+       std::initializer_list<Command*>{&run, &view, &probe, &config, &sweep, &export_store, &report,
+                                       &merge, &reproduce, &sensitivity, &study}) {
     commands.emplace_back(c->add(app), c);
   }
 

@@ -56,7 +56,9 @@ void CampaignFlags::add_to(CLI::App& sub) {
                  "studies/lochmatter2008)")
       ->check(not_empty());
   sub.add_flag("--quiet", quiet, "no progress bar");
-  sub.add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
+  sub.add_flag("--fresh", fresh,
+               "discard every run the store holds (needed only when the base scenario, a --set or "
+               "the seed changed; a sweep given more values keeps its stored runs)");
   sub.add_flag("--no-share-plumes", no_share,
                "simulate the plume anew for every run (same results, slower)");
 }

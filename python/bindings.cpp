@@ -29,6 +29,7 @@
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/io/exports.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
@@ -431,11 +432,92 @@ struct SignalWatch {
   }
 };
 
+// a sweep as Python gives it: a sweep file's path, or a dict of its parts made by
+// plumetrace.sweeps.sweep_spec (name, title, seed, runs, scenario, settings, axes), checked as a
+// file is
+pt::SweepDef sweep_def_of(const py::handle& spec) {
+  if (py::isinstance<py::str>(spec)) return pt::read_sweep_file(text_of(spec, "sweep file"));
+  const auto d = py::reinterpret_borrow<py::dict>(spec);
+  pt::SweepDef def;
+  def.name = text_of(d["name"], "name");
+  def.title = text_of(d["title"], "title");
+  def.seed = d["seed"].cast<std::uint64_t>();
+  def.runs = d["runs"].cast<int>();
+  if (!d["scenario"].is_none()) def.scenario_path = text_of(d["scenario"], "base");
+  for (const auto& [key, value] : overrides_of(d["settings"].cast<py::list>())) {
+    def.settings.push_back({key, value, false, "base", pt::Layer::kSweep});
+  }
+  for (const py::handle item : d["axes"].cast<py::list>()) {
+    const auto a = py::reinterpret_borrow<py::dict>(item);
+    pt::Axis axis;
+    axis.key = text_of(a["key"], "an axis key");
+    for (const py::handle v : a["values"].cast<py::list>()) {
+      axis.values.push_back(config_value(axis.key, v));
+    }
+    axis.label = a["label"].is_none() ? axis.key : text_of(a["label"], axis.key + " label");
+    if (!a["fixed"].is_none()) axis.fixed = config_value(axis.key, a["fixed"]);
+    def.axes.push_back(std::move(axis));
+  }
+  pt::check_sweep_def(def, "sweep '" + def.name + "'");
+  if (!def.scenario_path.empty()) def.scenario_settings = pt::read_scenario_file(def.scenario_path);
+  return def;
+}
+
+// what a sweep says about itself besides its rows: title, file, seed, runs per point and axes
+void describe_sweep(py::dict& out, const pt::ExpandedSweep& s, int runs) {
+  out["name"] = s.def.name;
+  out["title"] = s.def.title;
+  out["file"] = s.def.file;
+  out["seed"] = s.def.seed;
+  out["runs_per_point"] = pt::runs_per_point(s, runs);
+  py::list axes;
+  for (const pt::Axis& a : s.def.axes) {
+    py::dict axis;
+    axis["key"] = a.key;
+    axis["label"] = a.label;
+    py::list values;
+    for (const auto& v : a.values) std::visit([&](const auto& x) { values.append(x); }, v);
+    axis["values"] = values;
+    axis["fixed"] = py::none();
+    if (a.fixed) std::visit([&](const auto& x) { axis["fixed"] = py::cast(x); }, *a.fixed);
+    axes.append(axis);
+  }
+  out["axes"] = axes;
+}
+
+// the exports of the runs a results store holds of a sweep (path or dict), written into `out`
+// as `plumetrace report` writes them; the points with runs missing, each a dict
+py::list export_sweep_store(const py::object& spec, const py::list& overrides,
+                            const std::string& store, const std::string& out, int runs) {
+  if (runs < 0) {
+    throw pt::ConfigError("runs: must be >= 0 (0: the sweep's; got " + std::to_string(runs) + ")");
+  }
+  const std::vector<pt::ExpandedSweep> sweeps = {
+      pt::expand_sweep(sweep_def_of(spec), settings_of(std::nullopt, overrides))};
+  pt::check_campaign_size(sweeps, runs);
+  std::vector<pt::IncompletePoint> incomplete;
+  {
+    py::gil_scoped_release release;
+    incomplete = pt::export_store(store, sweeps, out, runs);
+  }
+  py::list points;
+  for (const auto& p : incomplete) {
+    py::dict d;
+    d["sweep"] = p.sweep;
+    d["point"] = p.point;
+    d["values"] = p.values;
+    d["stored"] = p.stored;
+    d["runs"] = p.runs;
+    points.append(d);
+  }
+  return points;
+}
+
 // every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial).
 // Ctrl-C (any Python signal handler that raises) or an error of a run (a Python controller's
 // exception) stops it: runs not started are dropped, the error is raised here, and the rows
 // finished before it ride on the exception as `partial_rows` (name, columns)
-py::dict sweep(const std::string& path, const py::list& overrides, int runs, int threads,
+py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int threads,
                bool share_plumes, py::object controller_factory) {
   if (runs < 0) {
     throw pt::ConfigError("runs: must be >= 0 (0: the sweep file's; got " + std::to_string(runs) +
@@ -446,8 +528,7 @@ py::dict sweep(const std::string& path, const py::list& overrides, int runs, int
                           " (got " + std::to_string(threads) + ")");
   }
   std::vector<pt::Setting> settings = settings_of(std::nullopt, overrides);
-  const std::vector<pt::ExpandedSweep> sweeps = {
-      pt::expand_sweep(pt::read_sweep_file(path), settings)};
+  const std::vector<pt::ExpandedSweep> sweeps = {pt::expand_sweep(sweep_def_of(spec), settings)};
   const pt::ExpandedSweep& s = sweeps.front();
   const std::int64_t defined = static_cast<std::int64_t>(s.points.size()) *
                                static_cast<std::int64_t>(pt::runs_per_point(s, runs));
@@ -483,7 +564,7 @@ py::dict sweep(const std::string& path, const py::list& overrides, int runs, int
   if (signal || failure) {
     // the signal's error first: a run cut short by it (PyController::Interrupted) is no failure
     py::dict partial;
-    partial["name"] = s.def.name;
+    describe_sweep(partial, s, runs);
     partial["columns"] = sweep_columns(s, std::move(rows));
     if (signal) {
       attach(signal->value(), "partial_rows", partial);
@@ -497,7 +578,7 @@ py::dict sweep(const std::string& path, const py::list& overrides, int runs, int
     }
   }
   py::dict out;
-  out["name"] = s.def.name;
+  describe_sweep(out, s, runs);
   out["columns"] = sweep_columns(s, std::move(rows));
   return out;
 }
@@ -668,6 +749,10 @@ PYBIND11_MODULE(_core, m) {
 
   py::register_exception<pt::ConfigError>(m, "ConfigError", PyExc_ValueError);
   py::register_exception<pt::IoError>(m, "IoError", PyExc_OSError);
+  // why: registered base first, as pybind11 tries the latest registration first
+  const auto store_error =
+      py::register_exception<pt::StoreError>(m, "StoreError", PyExc_ValueError);
+  py::register_exception<pt::StoreIoError>(m, "StoreIoError", store_error.ptr());
   m.attr("MAX_THREADS") = pt::kMaxThreads;
 
   m.def(
@@ -704,8 +789,12 @@ PYBIND11_MODULE(_core, m) {
   m.def("run", &run, py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"),
         py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"),
         py::arg("view") = std::nullopt);
-  m.def("sweep", &sweep, py::arg("path"), py::arg("overrides"), py::arg("runs"), py::arg("threads"),
-        py::arg("share_plumes"), py::arg("controller_factory"));
+  m.def("sweep", &sweep, py::arg("sweep"), py::arg("overrides"), py::arg("runs"),
+        py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
+  m.def("export_store", &export_sweep_store, py::arg("sweep"), py::arg("overrides"),
+        py::arg("store"), py::arg("out"), py::arg("runs"),
+        "the exports of a sweep's runs in a results store (as plumetrace report writes them); "
+        "the points with runs missing");
   m.def("probe", &probe, py::arg("path"), py::arg("overrides"), py::arg("points"),
         py::arg("warmup"), py::arg("duration"), py::arg("interval"), py::arg("seed"),
         py::arg("centreline_x"), py::arg("slab"),
@@ -742,6 +831,13 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(c.mean, c.lo, c.hi);
       },
       py::arg("values"), "mean and its t-based 95% interval");
+  m.def(
+      "quartiles",
+      [](const std::vector<double>& values) {
+        const pt::Quartiles q = pt::quartiles(values);
+        return py::make_tuple(q.q1, q.median, q.q3);
+      },
+      py::arg("values"), "lower quartile, median, upper quartile (NaN skipped; type 7)");
 
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")

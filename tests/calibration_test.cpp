@@ -79,7 +79,7 @@ TEST(Calibration, GivesTheStatisticsAndClaimsOfAStoreBasedSweep) {
   const std::string path = testing::temp_path("store", ".sqlite");
   std::map<std::string, SetStats> want;
   {
-    Store store(path, campaign_definition(sweeps), "test", true);
+    Store store(path, sweeps, "test", true);
     CampaignOptions run_options;
     run_options.threads = 1;
     run_campaign(sweeps, store, options.runs, run_options);

@@ -92,10 +92,10 @@ TEST(RunCampaign, RunsFinishedBeforeAControllerErrorStayInTheStore) {
   options.share_plumes = false;
   options.make_controller = failing_at(5);
   {
-    Store store(path, campaign_definition(sweeps), version(), false);
+    Store store(path, sweeps, version(), false);
     EXPECT_THROW(run_campaign(sweeps, store, 0, options), std::runtime_error);
   }
-  Store store(path, campaign_definition(sweeps), version(), false);
+  Store store(path, sweeps, version(), false);
   EXPECT_EQ(store.rows().size(), 4u);
   // and the same call without the failure computes only the rest
   options.make_controller = failing_at(0);

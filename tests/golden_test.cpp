@@ -33,8 +33,7 @@ std::string read_text(const std::string& path) {
 std::string golden_summary(int threads, bool share) {
   const std::vector<ExpandedSweep> sweeps = {
       expand_sweep(read_sweep_file(kGoldenDir + "/sweep.toml"), {})};
-  Store store(testing::temp_path("golden", ".sqlite"), campaign_definition(sweeps), version(),
-              false);
+  Store store(testing::temp_path("golden", ".sqlite"), sweeps, version(), false);
   CampaignOptions options;
   options.threads = threads;
   options.share_plumes = share;

@@ -160,7 +160,7 @@ TEST(ResultFields, TheStoresRunsTableHasTheFieldsInOrderAfterTheRunsKey) {
   const std::string path = testing::temp_path("store", ".sqlite");
   const RunRow row = distinct_row(sweep);
   {
-    Store store(path, "{}", version(), true);
+    Store store(path, std::vector<ExpandedSweep>{sweep}, version(), true);
     store.put_points({sweep});
     store.insert({row});
   }
@@ -179,7 +179,7 @@ TEST(ResultFields, TheStoresRunsTableHasTheFieldsInOrderAfterTheRunsKey) {
   });
   EXPECT_EQ(run_table(path), expected);
 
-  Store store(path, "{}", version(), false);
+  Store store(path, std::vector<ExpandedSweep>{sweep}, version(), false);
   testing::expect_same_rows(store.rows(), {row});
 }
 

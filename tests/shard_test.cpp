@@ -41,8 +41,7 @@ std::string error_of(const std::function<void()>& f) {
 std::string run_into(const std::vector<ExpandedSweep>& sweeps, const Shard& shard,
                      const std::string& stem, const std::string& def_version = "") {
   const std::string path = testing::temp_path(stem, ".sqlite");
-  Store store(path, campaign_definition(sweeps), def_version.empty() ? version() : def_version,
-              false);
+  Store store(path, sweeps, def_version.empty() ? version() : def_version, false);
   CampaignOptions options;
   options.threads = 2;
   const CampaignResult r = run_campaign(sweeps, store, 0, options, shard);
@@ -105,7 +104,7 @@ TEST(Shard, AShardKeepsItsRunsWhenTheRunsPerPointGrow) {
 TEST(Shard, RunningAShardAgainComputesAndAddsNothing) {
   const auto sweeps = two_plumes();
   const std::string path = run_into(sweeps, Shard{1, 3}, "again");
-  Store store(path, campaign_definition(sweeps), version(), false);
+  Store store(path, sweeps, version(), false);
   const CampaignResult again = run_campaign(sweeps, store, 0, {}, Shard{1, 3});
   EXPECT_EQ(again.computed, 0);
   EXPECT_EQ(again.skipped, 16);
@@ -127,7 +126,7 @@ TEST(Merge, ThreeShardsMergeToTheRowsOfTheWholeCampaign) {
   EXPECT_TRUE(report.missing_shards.empty());
   expect_same_rows(rows_of(out), whole);
   // the merged store is an ordinary store of the campaign: a sweep over it computes nothing
-  Store merged(out, campaign_definition(sweeps), version(), false);
+  Store merged(out, sweeps, version(), false);
   EXPECT_EQ(merged.info().shard, "");
   EXPECT_EQ(merged.info().points.at("two"), 4);
   EXPECT_EQ(run_campaign(sweeps, merged, 0, {}).computed, 0);
@@ -143,7 +142,7 @@ TEST(Merge, MissingPartsAreReportedAndASweepOverTheStoreCompletesIt) {
   EXPECT_EQ(report.gaps[0].expected, 48);
   EXPECT_EQ(report.gaps[0].present, 32);
   EXPECT_EQ(report.missing_shards, std::vector<std::string>{"2/3"});
-  Store store(out, campaign_definition(sweeps), version(), false);
+  Store store(out, sweeps, version(), false);
   EXPECT_EQ(run_campaign(sweeps, store, 0, {}).computed, 16);
   expect_same_rows(store.rows(), rows_of(run_into(sweeps, {}, "whole")));
 }
@@ -161,7 +160,7 @@ TEST(Merge, MergingAgainSkipsIdenticalRunsAndRefusesDifferentOnes) {
   // a part whose run differs from the one the store holds (same key, other result)
   const std::string forged = testing::temp_path("forged", ".sqlite");
   {
-    Store store(forged, campaign_definition(sweeps), version(), false);
+    Store store(forged, sweeps, version(), false);
     store.put_points(sweeps);
     RunRow row = rows_of(part).front();
     row.result.d_t += 1.0;
@@ -186,6 +185,38 @@ TEST(Merge, OverlappingPartsAreRefusedNamingBothFilesAndARun) {
   EXPECT_NE(error_of([&] { merge_stores({a, a}, out); }).find("given twice"), std::string::npos);
 }
 
+// the two plumes with a third algorithm between the two (its points share the plumes: the
+// shards keep every run they held)
+std::vector<ExpandedSweep> three_algorithms() {
+  std::ifstream in(PLUMETRACE_SOURCE_DIR "/tests/support/two_plumes.toml");
+  std::string text(std::istreambuf_iterator<char>(in), {});
+  const std::string axis = R"(["casting", "surge-cast"])";
+  text.replace(text.find(axis), axis.size(), R"(["casting", "surge-spiral", "surge-cast"])");
+  const std::string path = testing::temp_path("three", ".toml");
+  std::ofstream(path) << text;
+  return {expand_sweep(read_sweep_file(path), {})};
+}
+
+TEST(Merge, PartsThatNumberTheSamePointsOtherwiseMergeByTheirValues) {
+  const auto three = three_algorithms();
+  // part 1 ran the two algorithms first, then the three: surge-spiral's points come last in it
+  const std::string first = run_into(two_plumes(), Shard{1, 2}, "first");
+  {
+    Store store(first, three, version(), false);
+    const CampaignResult r = run_campaign(three, store, 0, {}, Shard{1, 2});
+    EXPECT_EQ(r.skipped, 24);
+    EXPECT_EQ(r.computed, 12);
+  }
+  // part 2 ran the three algorithms from the start: they are numbered in grid order
+  const std::string second = run_into(three, Shard{2, 2}, "second");
+  const std::string out = testing::temp_path("merged", ".sqlite");
+  const MergeReport report = merge_stores({first, second}, out);
+  EXPECT_EQ(report.added, 72);
+  EXPECT_TRUE(report.gaps.empty());
+  Store merged(out, three, version(), false);
+  expect_same_rows(merged.rows(), rows_of(run_into(three, {}, "whole")));
+}
+
 TEST(Merge, PartsOfAnotherDefinitionOrVersionAreRefusedNamingTheFile) {
   const auto sweeps = two_plumes();
   const std::string part = run_into(two_plumes(), Shard{1, 2}, "part");
@@ -197,7 +228,7 @@ TEST(Merge, PartsOfAnotherDefinitionOrVersionAreRefusedNamingTheFile) {
   EXPECT_NE(message.find("another sweep definition"), std::string::npos) << message;
 
   const std::string old = testing::temp_path("old", ".sqlite");
-  { Store store(old, campaign_definition(sweeps), "0.0.1", false); }
+  { Store store(old, sweeps, "0.0.1", false); }
   message = error_of([&] { merge_stores({part, old}, out); });
   EXPECT_NE(message.find(old), std::string::npos) << message;
   EXPECT_NE(message.find("0.0.1"), std::string::npos) << message;

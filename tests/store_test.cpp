@@ -253,13 +253,13 @@ TEST(StoreDamage, ANonNumericSeedOrRunsCountIsAnErrorNamingTheStoreAndKeyNotACra
 TEST(StoreSafety, ACampaignRefusedBeforeItsFirstRunLeavesTheStoreUnchanged) {
   const auto sweeps = two_plumes();
   const std::string path = testing::temp_path("refused", ".sqlite");
-  { Store store(path, campaign_definition(sweeps), version(), false); }
+  { Store store(path, sweeps, version(), false); }
   const StoreInfo before = [&] {
-    Store store(path, campaign_definition(sweeps), version(), false);
+    Store store(path, sweeps, version(), false);
     return store.info();
   }();
   {
-    Store store(path, campaign_definition(sweeps), version(), false);
+    Store store(path, sweeps, version(), false);
     const TaskRunner refuse = [](const auto&, const auto&, const auto&,
                                  const auto&) -> CampaignResult {
       throw ConfigError("refused");  // as a runner that cannot start (threads, ranks) would
@@ -272,13 +272,68 @@ TEST(StoreSafety, ACampaignRefusedBeforeItsFirstRunLeavesTheStoreUnchanged) {
   }
 }
 
+// issue 16: points identified by their values ------------------------------------------------
+
+// the quick sweep with a third algorithm between the two (a point more per plume)
+std::vector<ExpandedSweep> two_plumes_three_algorithms() {
+  std::ifstream in(kSweep);
+  std::string text(std::istreambuf_iterator<char>(in), {});
+  const std::string axis = R"(["casting", "surge-cast"])";
+  text.replace(text.find(axis), axis.size(), R"(["casting", "surge-spiral", "surge-cast"])");
+  const std::string path = testing::temp_path("three", ".toml");
+  std::ofstream(path) << text;
+  return {expand_sweep(read_sweep_file(path), {})};
+}
+
+std::string meta_of(const std::string& path, const std::string& key) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  sqlite3_stmt* q = nullptr;
+  sqlite3_prepare_v2(db, "SELECT value FROM meta WHERE key = ?", -1, &q, nullptr);
+  sqlite3_bind_text(q, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  std::string value;
+  if (sqlite3_step(q) == SQLITE_ROW)
+    value = reinterpret_cast<const char*>(sqlite3_column_text(q, 0));
+  sqlite3_finalize(q);
+  sqlite3_close(db);
+  return value;
+}
+
+TEST(StoreUpgrade, AStoreOfTheFormerSchemaIsReadAsItIsAndExtendedAsSchemaThree) {
+  // the clean store as the version before this one wrote it: schema 2, no epoch
+  const std::string store = copy_of_clean("schema2");
+  sql(store,
+      "UPDATE meta SET value = '2' WHERE key = 'schema'; DELETE FROM meta WHERE key = "
+      "'epoch';");
+  EXPECT_EQ(exports(store), exports(clean_store()));  // read as it is
+  const std::vector<RunRow> before = read_store_rows(store, nullptr);
+  const auto three = two_plumes_three_algorithms();
+  {
+    Store extended(store, three, version(), false);
+    CampaignOptions options;
+    options.threads = 2;
+    const CampaignResult r = run_campaign(three, extended, 0, options);
+    EXPECT_EQ(r.skipped, 48);
+    EXPECT_EQ(r.computed, 24);
+  }
+  EXPECT_EQ(meta_of(store, "schema"), "3");
+  EXPECT_EQ(meta_of(store, "epoch").size(), 16u);
+  const std::vector<RunRow> after = read_store_rows(store, nullptr);
+  ASSERT_EQ(after.size(), 72u);
+  // its own 48 rows first (points 0-3, as it numbered them), unchanged; the new points after
+  expect_same_rows(std::vector<RunRow>(after.begin(), after.begin() + 48), before);
+  EXPECT_EQ(after[48].point, 4);
+  // the two algorithms' exports from the extended store equal those of the clean store
+  EXPECT_EQ(exports(store), exports(clean_store()));
+}
+
 // F13 --------------------------------------------------------------------------------------------
 
 TEST(StoreConcurrency, TwoStoresOnOneFileSkipIdenticalRunsAndRefuseDifferentOnes) {
   const auto sweeps = two_plumes();
   const std::string path = testing::temp_path("shared", ".sqlite");
-  Store a(path, campaign_definition(sweeps), version(), false);
-  Store b(path, campaign_definition(sweeps), version(), false);
+  Store a(path, sweeps, version(), false);
+  Store b(path, sweeps, version(), false);
   CampaignOptions options;
   options.threads = 1;
   run_campaign(sweeps, a, 2, options);
@@ -300,12 +355,12 @@ TEST(StoreConcurrency, AStoreEmptiedForAnotherDefinitionMeanwhileTakesNoMoreRuns
   const std::vector<ExpandedSweep> other{
       expand_sweep(read_sweep_file(kSweep), {parse_override("sim.dt=0.04")})};
   const std::string path = testing::temp_path("emptied", ".sqlite");
-  Store a(path, campaign_definition(sweeps), version(), false);
+  Store a(path, sweeps, version(), false);
   CampaignOptions options;
   options.threads = 1;
   run_campaign(sweeps, a, 1, options);
   const auto rows = a.rows();
-  Store b(path, campaign_definition(other), version(), true);  // another process's --fresh
+  Store b(path, other, version(), true);  // another process's --fresh
   const std::string message = error_of([&] { a.insert(rows); });
   expect_names(message, {path, "another definition"});
   EXPECT_TRUE(b.rows().empty());

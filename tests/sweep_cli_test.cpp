@@ -155,6 +155,138 @@ TEST(SweepCli, ReusingAStoreWithAnotherDefinitionNeedsFresh) {
             0);
 }
 
+// a quick sweep of two axes, its sigma_a axis given `values` (a TOML array)
+std::string write_grid(const std::string& values) {
+  return testing::write_temp("grid", ".toml", R"(
+name = "grid"
+title = "a quick grid"
+runs = 3
+seed = 9
+
+[set]
+robot.start_x = 3.0
+sim.warmup = 4.0
+supervisor.timeout = 60.0
+
+[[axis]]
+key = "controller.algorithm"
+values = ["casting", "surge-cast"]
+
+[[axis]]
+key = "wind_sensor.sigma_a"
+values = )" + values + "\n");
+}
+
+TEST(SweepCli, AValueAddedToAnAxisComputesOnlyItsRunsAndGivesTheExportsOfAFreshSweep) {
+  const std::string store = testing::temp_path("grow", ".sqlite");
+  const std::string out = testing::temp_path("grow_out", "");
+  ASSERT_EQ(run_args({"sweep", write_grid("[0.1, 0.5]"), "--store", store, "--out", out}).code, 0);
+  const std::string grown = write_grid("[0.1, 0.3, 0.5]");
+  const auto o = run_args({"sweep", grown, "--store", store, "--out", out});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("18 runs (6 computed now, 12 from the store)"), std::string::npos) << o.out;
+  const std::string fresh = testing::temp_path("grow_fresh", "");
+  ASSERT_EQ(run_args({"sweep", grown, "--store", fresh + ".sqlite", "--out", fresh}).code, 0);
+  for (const char* file : {"/runs.csv", "/summary.csv"}) {
+    EXPECT_EQ(read_file(out + file), read_file(fresh + file)) << file;
+  }
+}
+
+TEST(ReportCli, WritesThePagesFiguresAndTablesOfAnySweep) {
+  const std::string sweep = write_grid("[0.1, 0.5]");
+  const std::string store = testing::temp_path("report", ".sqlite");
+  ASSERT_EQ(
+      run_args({"sweep", sweep, "--store", store, "--out", testing::temp_path("report_sweep", "")})
+          .code,
+      0);
+  const std::string out = testing::temp_path("report_out", "");
+  const auto o = run_args({"report", sweep, "--store", store, "--out", out});
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.err, "");
+  EXPECT_NE(o.out.find("report: " + out + "/report.html"), std::string::npos) << o.out;
+  for (const char* file : {"report.html", "report.md", "report.csv", "figures/sweep_grid.png",
+                           "runs.csv", "summary.csv", "results.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  }
+  EXPECT_GT(std::filesystem::file_size(out + "/figures/sweep_grid.png"), 10000u);
+  const std::string md = read_file(out + "/report.md");
+  // the title says what the data say; the table has every point; the figure is embedded
+  EXPECT_EQ(md.rfind("# a quick grid: success ", 0), 0u) << md.substr(0, 200);
+  EXPECT_NE(md.find("| casting | 0.5 | 3 |"), std::string::npos) << md;
+  EXPECT_NE(read_file(out + "/report.html").find("data:image/png;base64,"), std::string::npos);
+  // report.csv: a header and one row per point, with the summary's numbers
+  const std::string csv = read_file(out + "/report.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+  EXPECT_NE(md.find("plumetrace report " + sweep + " --store " + store), std::string::npos);
+}
+
+TEST(ReportCli, NamesThePointsWithRunsMissingAndTheCommandThatComputesThem) {
+  const std::string store = testing::temp_path("partial", ".sqlite");
+  ASSERT_EQ(run_args({"sweep", write_grid("[0.1, 0.5]"), "--store", store, "--out",
+                      testing::temp_path("partial_sweep", "")})
+                .code,
+            0);
+  const std::string grown = write_grid("[0.1, 0.3, 0.5]");
+  const std::string out = testing::temp_path("partial_out", "");
+  const auto o = run_args({"report", grown, "--store", store, "--out", out});
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const std::string& part :
+       {std::string("2 of 6 points of sweep grid have runs missing"),
+        std::string("(controller.algorithm = 'casting', wind_sensor.sigma_a = 0.3): 0 of 3 runs"),
+        "plumetrace sweep " + grown + " --store " + store}) {
+    EXPECT_NE(o.err.find(part), std::string::npos) << part << "\n" << o.err;
+  }
+  const std::string md = read_file(out + "/report.md");
+  EXPECT_NE(md.find("0 of 3 (incomplete)"), std::string::npos) << md;
+  EXPECT_NE(md.find("plumetrace sweep " + grown + " --store " + store), std::string::npos);
+  // computed, the report has nothing missing
+  ASSERT_EQ(run_args({"sweep", grown, "--store", store, "--out", out}).code, 0);
+  const auto again = run_args({"report", grown, "--store", store, "--out", out});
+  EXPECT_EQ(again.code, 0);
+  EXPECT_EQ(again.err, "");
+  EXPECT_EQ(read_file(out + "/report.md").find("incomplete"), std::string::npos);
+}
+
+TEST(ReportCli, ABadStoreOrFolderExitsTwoOrThreeNamingTheFile) {
+  const std::string sweep = write_grid("[0.1, 0.5]");
+  const std::string out = testing::temp_path("bad_out", "");
+  const auto expect = [&](const std::vector<std::string>& args, int code,
+                          const std::vector<std::string>& named) {
+    const auto o = run_args(args);
+    EXPECT_EQ(o.code, code) << o.err;
+    for (const auto& n : named) EXPECT_NE(o.err.find(n), std::string::npos) << n << "\n" << o.err;
+    EXPECT_FALSE(std::filesystem::exists(out + "/report.html"));
+  };
+  const std::string missing = testing::temp_path("missing", ".sqlite");
+  expect({"report", sweep, "--store", missing, "--out", out}, 2, {missing, "no such file"});
+  const std::string text = testing::write_temp("text", ".sqlite", "not a database at all\n");
+  expect({"report", sweep, "--store", text, "--out", out}, 2,
+         {text, "not a plumetrace results store"});
+  // a store of another sweep, and the same sweep under another base scenario
+  const std::string other = testing::temp_path("other", ".sqlite");
+  ASSERT_EQ(run_args({"sweep", write_grid("[0.1, 0.5]"), "--store", other, "--out",
+                      testing::temp_path("other_sweep", ""), "--set", "sim.dt=0.04"})
+                .code,
+            0);
+  expect({"report", sweep, "--store", other, "--out", out}, 2,
+         {other, "another resolved scenario", "wind_sensor.sigma_a = 0.1"});
+  // a store of other values of the sweep: nothing to report, and how to compute it
+  const std::string elsewhere = testing::temp_path("elsewhere", ".sqlite");
+  ASSERT_EQ(run_args({"sweep", write_grid("[0.2]"), "--store", elsewhere, "--out",
+                      testing::temp_path("elsewhere_sweep", "")})
+                .code,
+            0);
+  expect({"report", sweep, "--store", elsewhere, "--out", out}, 2,
+         {elsewhere, "holds no run of these sweeps' points",
+          "plumetrace sweep " + sweep + " --store " + elsewhere});
+  // an output folder that cannot be made: exit 3 naming it
+  const std::string file = testing::write_temp("a_file", ".txt", "in the way\n");
+  const auto o =
+      run_args({"report", sweep, "--store", other, "--out", file + "/out", "--set", "sim.dt=0.04"});
+  EXPECT_EQ(o.code, 3) << o.err;
+  EXPECT_NE(o.err.find(file), std::string::npos) << o.err;
+}
+
 TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
   const std::string out = testing::temp_path("reproduce", "");
   ASSERT_EQ(wait_exit(spawn({"reproduce", "--runs", "1", "--out", out, "--quiet", "--presets",

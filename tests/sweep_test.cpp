@@ -13,6 +13,7 @@
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/store.hpp"
+#include "plumetrace/io/exports.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
@@ -68,8 +69,7 @@ using testing::expect_same_rows;
 
 std::vector<RunRow> run_fresh(const std::vector<ExpandedSweep>& sweeps, int threads,
                               bool share = true) {
-  Store store(testing::temp_path("store", ".sqlite"), campaign_definition(sweeps), version(),
-              false);
+  Store store(testing::temp_path("store", ".sqlite"), sweeps, version(), false);
   CampaignOptions options;
   options.threads = threads;
   options.share_plumes = share;
@@ -382,7 +382,7 @@ TEST(Campaign, StoppedCampaignResumesToTheRowsOfACleanOne) {
   const std::string path = testing::temp_path("resume", ".sqlite");
   std::atomic<bool> stop{false};
   {
-    Store store(path, campaign_definition(sweeps), version(), false);
+    Store store(path, sweeps, version(), false);
     CampaignOptions options;
     options.threads = 2;
     options.stop = &stop;
@@ -396,7 +396,7 @@ TEST(Campaign, StoppedCampaignResumesToTheRowsOfACleanOne) {
     EXPECT_GE(first.computed, 5);
     EXPECT_LT(first.computed, 24);
   }
-  Store store(path, campaign_definition(sweeps), version(), false);
+  Store store(path, sweeps, version(), false);
   const auto before = store.keys().size();
   CampaignOptions options;
   options.threads = 2;
@@ -410,7 +410,7 @@ TEST(Campaign, StoppedCampaignResumesToTheRowsOfACleanOne) {
 TEST(Campaign, MoreRunsExtendTheStoreAndFewerReuseIt) {
   const auto sweeps = quick();
   const std::string path = testing::temp_path("extend", ".sqlite");
-  Store store(path, campaign_definition(sweeps), version(), false);
+  Store store(path, sweeps, version(), false);
   CampaignOptions options;
   EXPECT_EQ(run_campaign(sweeps, store, 2, options).computed, 12);
   const CampaignResult more = run_campaign(sweeps, store, 4, options);
@@ -420,29 +420,142 @@ TEST(Campaign, MoreRunsExtendTheStoreAndFewerReuseIt) {
   expect_same_rows(store.rows(), run_fresh(sweeps, 1));
 }
 
+// the quick sweep with its sigma_a axis given `values` (a TOML array)
+std::vector<ExpandedSweep> quick_with(const std::string& values) {
+  std::string text = kQuickSweep;
+  const std::string axis = "[0.0, 0.3, 0.6]";
+  text.replace(text.find(axis), axis.size(), values);
+  return {expand_sweep(read_sweep_file(write_sweep(text)), {})};
+}
+
+// the exports of a campaign's rows (runs.csv, summary.csv, results.json) as one text
+std::string exports_of(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows) {
+  const std::string out = testing::temp_path("exports", "");
+  std::filesystem::create_directories(out);
+  write_exports(out, sweeps, rows, 0);
+  std::string text;
+  for (const char* name : {"/runs.csv", "/summary.csv", "/results.json"}) {
+    std::ifstream in(out + name);
+    text += std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  return text;
+}
+
+// the rows of `all` whose key is among `some`'s
+std::vector<RunRow> same_keys(const std::vector<RunRow>& all, const std::vector<RunRow>& some) {
+  std::set<RunKey> keys;
+  for (const auto& r : some) keys.emplace(r.sweep, r.point, r.trial);
+  std::vector<RunRow> out;
+  for (const auto& r : all) {
+    if (keys.count({r.sweep, r.point, r.trial})) out.push_back(r);
+  }
+  return out;
+}
+
+TEST(Campaign, AValueAddedToAnAxisComputesOnlyItsRunsAndKeepsEveryStoredRow) {
+  const auto first = quick_with("[0.0, 0.6]");          // 2 x 2 points, 16 runs
+  const auto extended = quick_with("[0.0, 0.3, 0.6]");  // 0.3 added between: 2 x 3 points
+  const std::string path = testing::temp_path("added", ".sqlite");
+  CampaignOptions options;
+  options.threads = 2;
+  {
+    Store store(path, first, version(), false);
+    EXPECT_EQ(run_campaign(first, store, 0, options).computed, 16);
+  }
+  const std::vector<RunRow> before = read_store_rows(path, nullptr);
+  Store store(path, extended, version(), false);
+  const CampaignResult more = run_campaign(extended, store, 0, options);
+  EXPECT_EQ(more.skipped, 16);
+  EXPECT_EQ(more.computed, 8);  // the two new points' runs only
+  EXPECT_FALSE(more.interrupted);
+
+  // the stored rows are as they were, bit for bit, under the numbers the store gave them
+  const std::vector<RunRow> after = read_store_rows(path, nullptr);
+  EXPECT_EQ(after.size(), 24u);
+  expect_same_rows(same_keys(after, before), before);
+  // and the store now holds what a fresh run of the extended sweep computes, point by point
+  const std::vector<RunRow> fresh = run_fresh(extended, 1);
+  expect_same_rows(store.rows(), fresh);
+  EXPECT_EQ(exports_of(extended, store.rows()), exports_of(extended, fresh));
+  // the point 0.6 moved from index 1 to index 2 of each algorithm: found by its values
+  EXPECT_EQ(fresh[8].point, 2);
+  EXPECT_EQ(extended[0].points[2].config_hash, first[0].points[1].config_hash);
+}
+
+TEST(Campaign, AValueTakenOffAnAxisKeepsItsRunsAndTheSmallerSweepComputesNothing) {
+  const auto first = quick_with("[0.0, 0.6]");
+  const auto extended = quick_with("[0.0, 0.3, 0.6]");
+  const std::string path = testing::temp_path("removed", ".sqlite");
+  Store big(path, extended, version(), false);
+  EXPECT_EQ(run_campaign(extended, big, 0, {}).computed, 24);
+  {
+    Store small(path, first, version(), false);
+    const CampaignResult again = run_campaign(first, small, 0, {});
+    EXPECT_EQ(again.computed, 0);
+    EXPECT_EQ(again.skipped, 16);
+    Store clean(testing::temp_path("clean", ".sqlite"), first, version(), false);
+    run_campaign(first, clean, 0, {});
+    expect_same_rows(small.rows(), clean.rows());
+  }
+  EXPECT_EQ(read_store_rows(path, nullptr).size(), 24u);  // 0.3's runs are still there
+  EXPECT_EQ(run_campaign(extended, big, 0, {}).computed, 0);
+}
+
+TEST(Campaign, AStoreExtendedByAnotherProcessMeanwhileServesTheFirstOneStill) {
+  const auto first = quick_with("[0.0, 0.6]");
+  const auto extended = quick_with("[0.0, 0.3, 0.6]");
+  const std::string path = testing::temp_path("meanwhile", ".sqlite");
+  Store a(path, first, version(), false);
+  EXPECT_EQ(run_campaign(first, a, 2, {}).computed, 8);
+  Store b(path, extended, version(), false);  // another process adds 0.3 and runs everything
+  EXPECT_EQ(run_campaign(extended, b, 0, {}).computed, 16);
+  // a finds its points among b's by their values: all 16 runs of its sweep are stored
+  const CampaignResult rest = run_campaign(first, a, 0, {});
+  EXPECT_EQ(rest.computed, 0);
+  EXPECT_EQ(rest.skipped, 16);
+  Store clean(testing::temp_path("clean", ".sqlite"), first, version(), false);
+  run_campaign(first, clean, 0, {});
+  expect_same_rows(a.rows(), clean.rows());
+}
+
 TEST(Store, RefusesAnotherDefinitionUnlessFresh) {
   const auto sweeps = quick();
   const std::string path = testing::temp_path("refuse", ".sqlite");
   {
-    Store store(path, campaign_definition(sweeps), version(), false);
+    Store store(path, sweeps, version(), false);
     run_campaign(sweeps, store, 1, {});
   }
   const auto other = std::vector<ExpandedSweep>{
       expand_sweep(read_sweep_file(write_sweep(kQuickSweep)), {parse_override("sim.dt=0.05")})};
   try {
-    Store store(path, campaign_definition(other), version(), false);
+    Store store(path, other, version(), false);
     FAIL() << "a different definition was accepted";
   } catch (const StoreError& e) {
-    EXPECT_NE(std::string(e.what()).find("--fresh"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    // the same values under another base scenario: the message names the point
+    for (const std::string& part : {std::string("--fresh"), path,
+                                    std::string("controller.algorithm = 'casting', "
+                                                "wind_sensor.sigma_a = 0")}) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << part << ": " << e.what();
+    }
   }
   try {
-    Store store(path, campaign_definition(sweeps), "0.0.0-other", false);
+    Store store(path, sweeps, "0.0.0-other", false);
     FAIL() << "another version was accepted";
   } catch (const StoreError& e) {
     EXPECT_NE(std::string(e.what()).find("0.0.0-other"), std::string::npos) << e.what();
   }
-  Store fresh(path, campaign_definition(other), version(), true);
+  // the same name and values under another master seed: the runs would all differ
+  auto reseeded = read_sweep_file(write_sweep(kQuickSweep));
+  reseeded.seed = 78;
+  try {
+    Store store(path, std::vector<ExpandedSweep>{expand_sweep(reseeded, {})}, version(), false);
+    FAIL() << "another seed was accepted";
+  } catch (const StoreError& e) {
+    for (const char* part : {"seed 77", "seed 78", "quick", "--fresh"}) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << part << ": " << e.what();
+    }
+  }
+  Store fresh(path, other, version(), true);
   EXPECT_TRUE(fresh.keys().empty());
 }
 
@@ -450,7 +563,7 @@ TEST(Store, StoredRowsHaveNoDuplicatesAndKeepFullSeeds) {
   auto def = read_sweep_file(write_sweep(kQuickSweep));
   def.seed = 18446744073709551615ULL;  // the largest seed survives the round trip
   const std::vector<ExpandedSweep> sweeps{expand_sweep(def, {})};
-  Store store(testing::temp_path("seed", ".sqlite"), campaign_definition(sweeps), version(), false);
+  Store store(testing::temp_path("seed", ".sqlite"), sweeps, version(), false);
   run_campaign(sweeps, store, 2, {});
   const auto rows = store.rows();
   EXPECT_EQ(rows.size(), 12u);

@@ -107,6 +107,18 @@ struct ExportCommand final : Command {
   int run() override;
 };
 
+/// `plumetrace report SWEEP.toml... --store FILE [--out DIR]`: the report of any sweep.
+struct ReportCommand final : Command {
+  std::vector<std::string> sweep_files;
+  std::string store;
+  std::string out;
+  int runs = 0;
+  std::vector<std::string> sets;
+
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+};
+
 /// `plumetrace merge PART... --store FILE`: the shards' stores into one.
 struct MergeCommand final : Command {
   std::vector<std::string> parts;

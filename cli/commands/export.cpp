@@ -1,3 +1,4 @@
+#include "campaign_run.hpp"
 #include "commands.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/exports.hpp"
@@ -26,7 +27,7 @@ int ExportCommand::run() {
   for (const auto& f : sweep_files) {
     sweeps.push_back(expand_sweep(read_sweep_file(f), parse_sets(sets)));
   }
-  export_store(store, sweeps, out, runs);
+  warn_incomplete(sweeps, export_store(store, sweeps, out, runs), store, extra_options(sets, runs));
   return 0;
 }
 

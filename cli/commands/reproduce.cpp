@@ -54,8 +54,7 @@ int ReproduceCommand::run() {
   const Reproduction plan = plan_reproduction(study, preset, others);
   check_campaign_size(plan.sweeps, runs);
   std::filesystem::create_directories(flags.out);
-  Store store(flags.out + "/results.sqlite", campaign_definition(plan.sweeps), version(),
-              flags.fresh);
+  Store store(flags.out + "/results.sqlite", plan.sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress("reproduce", plan.sweeps, store, runs, flags, result)) {
     return kInterrupted;

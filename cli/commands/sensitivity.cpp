@@ -26,8 +26,7 @@ int SensitivityCommand::run() {
   const std::vector<ExpandedSweep> sweeps = sensitivity_campaign(study, runs);
   check_campaign_size(sweeps, runs);
   std::filesystem::create_directories(flags.out);
-  Store store(flags.out + "/sensitivity.sqlite", campaign_definition(sweeps), version(),
-              flags.fresh);
+  Store store(flags.out + "/sensitivity.sqlite", sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress("sensitivity", sweeps, store, runs, flags, result)) return kInterrupted;
   const std::string md =

@@ -27,7 +27,9 @@ CLI::App* StudyCommand::add(CLI::App& app) {
                                "output folder: store, exports and report (default: out/NAME)")
                    ->check(not_empty());
   sub->add_flag("--quiet", flags.quiet, "no progress bar");
-  sub->add_flag("--fresh", flags.fresh, "discard the store's runs if its definition differs");
+  sub->add_flag("--fresh", flags.fresh,
+                "discard every run the store holds (needed only when the base scenario, a --set or "
+                "the seed changed; a sweep given more values keeps its stored runs)");
   sub->add_flag("--no-share-plumes", flags.no_share,
                 "simulate the plume anew for every run (same results, slower)");
   return sub;
@@ -40,7 +42,7 @@ int StudyCommand::run() {
   check_campaign_size(sweeps, runs);
   if (out_option->count() == 0) flags.out = "out/" + study.name;
   std::filesystem::create_directories(flags.out);
-  Store store(flags.out + "/results.sqlite", campaign_definition(sweeps), version(), flags.fresh);
+  Store store(flags.out + "/results.sqlite", sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress(study.name, sweeps, store, runs, flags, result)) return kInterrupted;
   write_exports(flags.out, sweeps, store.rows(), runs);

@@ -73,8 +73,7 @@ std::unique_ptr<Store> open_sweep_store(const SweepPlan& plan, const SweepComman
   if (plan.shard.count <= 1) std::filesystem::create_directories(plan.out);
   const auto folder = std::filesystem::path(plan.store_path).parent_path();
   if (!folder.empty()) std::filesystem::create_directories(folder);
-  return std::make_unique<Store>(plan.store_path, campaign_definition(plan.sweeps), version(),
-                                 cmd.fresh);
+  return std::make_unique<Store>(plan.store_path, plan.sweeps, version(), cmd.fresh);
 }
 
 CampaignFlags sweep_flags(const SweepCommand& cmd) {
@@ -251,7 +250,9 @@ CLI::App* SweepCommand::add(CLI::App& app) {
                   "compute only part I of N (I/N, e.g. 2/8) for job arrays; merge the parts' "
                   "stores with plumetrace merge");
   sub->add_flag("--quiet", quiet, "no progress bar");
-  sub->add_flag("--fresh", fresh, "discard the store's runs if its definition differs");
+  sub->add_flag("--fresh", fresh,
+                "discard every run the store holds (needed only when the base scenario, a --set or "
+                "the seed changed; a sweep given more values keeps its stored runs)");
   sub->add_flag("--no-share-plumes", no_share,
                 "simulate the plume anew for every run (same results, slower)");
   return sub;

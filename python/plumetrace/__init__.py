@@ -14,6 +14,9 @@ the build's copy: ``PYTHONPATH=build/python /usr/bin/python3``.
     rows = pt.sweep(paper.sets["A"], runs=4)   # the paper's sets ship with the package
     rows.to_numpy()["success"]             # or rows.to_pandas()
     m = pt.probe(grid="arena")             # the plume alone: detection map as NumPy arrays
+    rows = pt.sweep({"surge_cast.d_lost": [0.2, 0.6]}, runs=20)   # a sweep as a dict of axes
+    rows.summary()                         # per point: Wilson 95% of success, t 95% of overhead
+    pt.report(rows, out="out/mine")        # report.html, report.md, report.csv, figures/
 
 Submodules: ``plumetrace.studies`` (the studies' sweep files), ``plumetrace.controllers`` (write
 your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plumetrace.plots``
@@ -21,11 +24,15 @@ your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plum
 ``python3 -m plumetrace.report OUT_DIR``).
 """
 
-__all__ = ["ConfigError", "MAX_THREADS", "Scenario", "SweepRows", "algorithms", "probe",
-           "result_fields", "run", "sweep", "__version__"]
+__all__ = ["ConfigError", "MAX_THREADS", "Scenario", "StoreError", "SweepRows", "algorithms",
+           "probe", "result_fields", "run", "sweep", "__version__"]
 
 
 def __getattr__(name):
+    if name == "report":  # the report package, callable: plumetrace.report(...) for any sweep
+        import importlib
+
+        return importlib.import_module(".report", __name__)
     # why: lazy, so that plumetrace.report works from the source tree without the C++ module
     if name in __all__:
         from . import api

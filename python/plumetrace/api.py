@@ -7,6 +7,7 @@ import numbers
 from . import _core
 
 ConfigError = _core.ConfigError
+StoreError = _core.StoreError
 __version__ = _core.__version__
 MAX_THREADS = _core.MAX_THREADS  # the most worker threads a sweep may ask for (docs/reliability.md)
 
@@ -136,27 +137,38 @@ def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_int
                      None if view is None else str(view))
 
 
-def sweep(path, runs=0, threads=0, share_plumes=True, controller=None, overrides=None, **kwargs):
-    """Every run of a sweep file (the format `plumetrace sweep` reads), in C++ threads with
-    the GIL released. `runs`: runs per point (0: the file's); `threads`: 0 for all cores;
+def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, overrides=None,
+          base=None, seed=None, name=None, title=None, fixed=None, labels=None, **kwargs):
+    """Every run of a sweep, in C++ threads with the GIL released. `sweep`: a sweep file (the
+    format `plumetrace sweep` reads), or a dict of axes ``{dotted key: values}`` (the first key
+    varying slowest) on the base scenario `base` (a Scenario, a scenario file or None), with
+    master seed `seed` (default 1), `name` and `title` (plumetrace.sweeps.sweep_spec). `runs`:
+    runs per point (0: the file's, 10 for a dict); `threads`: 0 for all cores;
     `overrides`/keyword arguments change keys of the base scenario (not an axis key);
     `controller`: as in run(). Returns SweepRows, sorted by (point, trial).
 
     Ctrl-C, or an exception a controller raises, stops the sweep: runs not yet started are
     dropped and the exception is raised here with the rows finished before it as its
     ``partial_rows`` attribute (SweepRows)."""
+    from .sweeps import sweep_spec
+
+    runs = _whole("runs", runs, 0, 2**31 - 1)
+    spec = sweep_spec(sweep, runs, base, seed, name, title, fixed, labels)
     settings = [(k, _config_value(k, v))
                 for k, v in _dotted({**(overrides or {}), **kwargs}).items()]
     try:
-        out = _core.sweep(str(path), settings, _whole("runs", runs, 0, 2**31 - 1),
-                          _whole("threads", threads, 0, MAX_THREADS),
+        out = _core.sweep(spec, settings, runs, _whole("threads", threads, 0, MAX_THREADS),
                           _flag("share_plumes", share_plumes), controller)
     except BaseException as e:
         partial = getattr(e, "partial_rows", None)
         if isinstance(partial, dict):
-            e.partial_rows = SweepRows(partial["name"], partial["columns"])
+            e.partial_rows = SweepRows(partial["name"], partial["columns"], _info(partial))
         raise
-    return SweepRows(out["name"], out["columns"])
+    return SweepRows(out["name"], out["columns"], _info(out))
+
+
+def _info(out):
+    return {k: out[k] for k in ("title", "file", "seed", "runs_per_point", "axes") if k in out}
 
 
 def probe(scenario=None, points=None, grid=None, warmup=None, duration=60.0, interval=0.32,
@@ -235,11 +247,23 @@ def probe(scenario=None, points=None, grid=None, warmup=None, duration=60.0, int
 
 
 class SweepRows:
-    """The rows of a sweep as columns: ``rows["d_t"]``, ``rows.to_numpy()``, ``rows.to_pandas()``."""
+    """The rows of a sweep as columns: ``rows["d_t"]``, ``rows.to_numpy()``, ``rows.to_pandas()``;
+    ``rows.summary()`` for the statistics per point. ``rows.info``: the sweep's title, file,
+    seed, runs per point and axes (key, label, values, fixed)."""
 
-    def __init__(self, name, columns):
+    def __init__(self, name, columns, info=None):
         self.name = name
         self.columns = columns
+        self.info = dict(info or {})
+
+    def summary(self):
+        """Per point: its axis values, the count of each outcome, the success rate with its
+        Wilson 95% interval and the mean overhead of the successful runs with its t-based 95%
+        interval and quartiles, as `plumetrace sweep` computes them (the same numbers as its
+        summary.csv). Returns SweepRows with one row per point."""
+        from .sweeps import summary
+
+        return summary(self)
 
     def __len__(self):
         return len(self.columns["point"])

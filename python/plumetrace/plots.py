@@ -8,8 +8,6 @@
     fig = plots.sweep_bars(rows, "casting.beta_deg")
 """
 
-import math
-
 import numpy as np
 
 
@@ -57,39 +55,57 @@ def trajectory(result, scenario=None, snapshot=-1, ax=None):
     return ax
 
 
-def sweep_bars(rows, axis_key, fig=None):
-    """Success rate (with Wilson 95% intervals) and mean overhead of successful runs (with t 95%
-    intervals) per value of `axis_key`, from plumetrace.sweep rows. Returns the figure."""
+def sweep_bars(rows, axis_key=None, hue=None, fig=None):
+    """Success rate (Wilson 95% intervals) and mean overhead of the successful runs (t 95%
+    intervals) per value of `axis_key` (default: the sweep's first axis), from plumetrace.sweep
+    rows, drawn as the reports draw them. A second axis is drawn as colours side by side (`hue`:
+    its key, by default the sweep's next axis); a sweep of more axes is refused with ValueError,
+    as its points would be pooled (plumetrace.report draws every point of any sweep). Returns
+    the figure."""
     import matplotlib.pyplot as plt
 
-    from . import _core
+    from .report.figures import draw_sweep_panels
+    from .report.sweep import fmt_axis_value, results_from_rows, sweep_views
+    from .sweeps import axis_keys
 
-    cols = rows.to_numpy()
-    values = list(dict.fromkeys(cols[axis_key].tolist()))
-    rate, lo, hi, mean, half = [], [], [], [], []
-    for v in values:
-        sel = cols[axis_key] == v
-        n, k = int(sel.sum()), int(cols["success"][sel].sum())
-        a, b = _core.wilson_interval(k, n)
-        r = k / n
-        rate.append(100 * r)
-        lo.append(100 * (r - a))
-        hi.append(100 * (b - r))
-        m, mlo, mhi = _core.mean_ci(cols["overhead"][sel & cols["success"]].tolist())
-        mean.append(m)
-        half.append(0.0 if math.isnan(mhi) else mhi - m)
+    keys = axis_keys(rows)
+    axis_key = keys[0] if axis_key is None else axis_key
+    if axis_key not in keys:
+        raise ValueError(f"{axis_key!r} is not an axis of sweep '{rows.name}' (axes: "
+                         f"{', '.join(keys)})")
+    others = [k for k in keys if k != axis_key]
+    if hue is None and others:
+        hue = others[0]
+    if hue is not None and hue not in others:
+        raise ValueError(f"hue {hue!r} is not another axis of sweep '{rows.name}' (axes: "
+                         f"{', '.join(keys)})")
+    pooled = [k for k in others if k != hue]
+    if pooled:
+        raise ValueError(f"sweep '{rows.name}' has {len(keys)} axes ({', '.join(keys)}): "
+                         f"sweep_bars draws {axis_key} with {hue} as colours, and would pool "
+                         f"the runs over {', '.join(pooled)}; draw every point with "
+                         "plumetrace.report(rows, out=...), which gives each of its values a row "
+                         "of panels")
+    view = sweep_views(results_from_rows(rows))[0]
+    order = {a.key: i for i, a in enumerate(view.axes)}
+    x_axis = view.axes[order[axis_key]]
+
+    def at(x, h):
+        values = [None] * len(view.axes)
+        values[order[axis_key]] = x
+        if hue is not None:
+            values[order[hue]] = h
+        return view.drawn(values)
+
+    hue_values = view.axes[order[hue]].values if hue is not None else [None]
+    groups = [(None if h is None else fmt_axis_value(h), [at(x, h) for x in x_axis.values])
+              for h in hue_values]
     if fig is None:
-        fig = plt.figure(figsize=(9, 3.2))
+        fig = plt.figure(figsize=(10, 3.6), layout="constrained")
     left, right = fig.subplots(1, 2)
-    pos = np.arange(len(values))
-    left.bar(pos, rate, yerr=[lo, hi], capsize=3, color="tab:blue")
-    left.set_ylabel("success rate (%)")
-    left.set_ylim(0, 105)
-    right.bar(pos, np.asarray(mean) - 1.0, bottom=1.0, yerr=half, capsize=3, color="tab:orange")
-    right.set_ylabel("overhead d_t / d_u")
-    for ax in (left, right):
-        ax.set_xticks(pos, [str(v) for v in values])
-        ax.set_xlabel(axis_key)
+    draw_sweep_panels(left, right, [fmt_axis_value(v) for v in x_axis.values], groups, axis_key,
+                      x_axis.fixed_index if hue is None else None)
+    if hue is not None:
+        left.legend(title=hue, fontsize=7, title_fontsize=7, loc="lower left")
     fig.suptitle(rows.name)
-    fig.tight_layout()
     return fig

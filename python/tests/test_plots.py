@@ -34,11 +34,20 @@ def test_trajectory_draws_the_path_by_state_over_the_filaments(tmp_path):
 def test_sweep_bars_show_each_value_with_wilson_and_t_intervals():
     rows = pt.sweep(GOLDEN, runs=4)
     fig = plots.sweep_bars(rows, "wind_sensor.sigma_a")
-    left, right = fig.axes
+    left, right = fig.axes[:2]
     heights = [p.get_height() for p in left.patches]
     cols = rows.to_numpy()
-    for v, h in zip([0.2, 0.6], heights):
-        sel = cols["wind_sensor.sigma_a"] == v
+    # the golden sweep's other axis, the algorithm, is drawn as colours: a bar per pair
+    pairs = [(a, v) for a in ("casting", "surge-spiral", "surge-cast") for v in (0.2, 0.6)]
+    assert len(heights) == len(pairs)
+    for (a, v), h in zip(pairs, heights):
+        sel = (cols["wind_sensor.sigma_a"] == v) & (cols["controller.algorithm"] == a)
         assert h == pytest.approx(100 * cols["success"][sel].mean())
-    lo, hi = pt._core.wilson_interval(3, 12)
-    assert 0.0 < lo < 0.25 < hi < 1.0
+    # the first bar's error bar is its Wilson interval
+    sel = (cols["wind_sensor.sigma_a"] == 0.2) & (cols["controller.algorithm"] == "casting")
+    lo, hi = pt._core.wilson_interval(int(cols["success"][sel].sum()), 4)
+    segments = left.collections[0].get_segments()
+    assert segments[0][:, 1].tolist() == pytest.approx([100 * lo, 100 * hi])
+    # and the overhead's, its t interval
+    mean, tlo, thi = pt._core.mean_ci(cols["overhead"][sel & cols["success"]].tolist())
+    assert right.collections[0].get_segments()[0][:, 1].tolist() == pytest.approx([tlo, thi])

@@ -132,4 +132,27 @@ std::vector<RunResult> point_runs(const std::vector<RunRow>& rows, const std::st
   return out;
 }
 
+std::vector<IncompletePoint> incomplete_points(const std::vector<ExpandedSweep>& sweeps,
+                                               const std::vector<RunRow>& rows, int runs_override) {
+  std::map<std::pair<std::string, int>, std::int64_t> stored;
+  std::map<std::string, int> runs_of;
+  for (const auto& s : sweeps) runs_of[s.def.name] = runs_per_point(s, runs_override);
+  for (const auto& r : rows) {
+    const auto runs = runs_of.find(r.sweep);
+    if (runs != runs_of.end() && r.trial < static_cast<std::uint64_t>(runs->second)) {
+      ++stored[{r.sweep, r.point}];
+    }
+  }
+  std::vector<IncompletePoint> out;
+  for (const auto& s : sweeps) {
+    const int runs = runs_per_point(s, runs_override);
+    for (const auto& p : s.points) {
+      const auto it = stored.find({s.def.name, p.index});
+      const std::int64_t have = it == stored.end() ? 0 : it->second;
+      if (have < runs) out.push_back({s.def.name, p.index, axis_values_text(s.def, p), have, runs});
+    }
+  }
+  return out;
+}
+
 }  // namespace plumetrace

@@ -17,6 +17,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <random>
 #include <stdexcept>
 #include <string_view>
 #include <thread>
@@ -31,10 +32,13 @@ namespace plumetrace {
 
 namespace {
 
-// the schema this version writes: schema 1 plus a checksum of the runs and of the points in meta;
-// stores of schema 1 are read without them and gain them when next written
-constexpr std::string_view kSchemaVersion = "2";
+// the schema this version writes: schema 1 plus a checksum of the runs and of the points in meta
+// (schema 2), plus points numbered by the store, found by their values, and an epoch in meta that
+// --fresh renews (schema 3); stores of schemas 1 and 2 are read as they are (their points are
+// numbered in grid order, which is one numbering of schema 3) and upgraded when next written
+constexpr std::string_view kSchemaVersion = "3";
 constexpr std::string_view kLegacySchema = "1";
+constexpr std::string_view kSchema2 = "2";
 // why: a merge holds the store for seconds; another process writing it waits that long
 constexpr int kBusyTimeoutMs = 60000;
 
@@ -836,9 +840,10 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
     return meta[key];
   };
   const std::string& schema = need("schema");
-  if (schema != kSchemaVersion && schema != kLegacySchema) {
+  if (schema != kSchemaVersion && schema != kSchema2 && schema != kLegacySchema) {
     damaged(path, "its schema is '" + shown(schema) + "'; this plumetrace reads schema " +
-                      std::string(kSchemaVersion) + " (and " + std::string(kLegacySchema) + ")");
+                      std::string(kSchemaVersion) + " (and " + std::string(kSchema2) + ", " +
+                      std::string(kLegacySchema) + ")");
   }
   if (!nlohmann::json::accept(need("definition"))) {
     damaged(path, "its definition (meta key 'definition') is not JSON");
@@ -1132,15 +1137,181 @@ void use_wal(sqlite3* db, const std::string& path) {
   }
 }
 
+// a new epoch for meta "epoch": made when a store is made or emptied (--fresh), so that a process
+// that opened it before sees that its points may mean others now
+std::string new_epoch() {
+  std::random_device device;
+  const auto now =
+      static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  const std::uint64_t bits = (static_cast<std::uint64_t>(device()) << 32) ^ device() ^ now;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(bits));
+  return hex;
+}
+
+// the points table without the configs (sweep, number, axis values, hash), ordered by (sweep,
+// point), read inside a transaction
+std::vector<StoredPoint> point_index(sqlite3* db, const std::string& path) {
+  Statement q(db,
+              "SELECT sweep, point, axis_values, config_hash, rowid FROM points ORDER BY sweep, "
+              "point",
+              path);
+  const int sweep = q.column("sweep"), point = q.column("point"),
+            axis_values = q.column("axis_values"), config_hash = q.column("config_hash"),
+            rowid = q.column("rowid");
+  std::vector<StoredPoint> points;
+  while (q.step()) {
+    const RowReader in(q, path, "row " + std::to_string(q.integer(rowid)) + " of table points");
+    points.push_back(
+        {in.text(sweep, "sweep"), static_cast<int>(in.integer(point, "point", 0, INT_MAX)),
+         in.text(axis_values, "axis_values"), in.text(config_hash, "config_hash"), ""});
+  }
+  return points;
+}
+
+// the sweeps of a stored definition by name, with their master seeds as it writes them
+std::map<std::string, std::string> stored_seeds(const std::string& definition) {
+  std::map<std::string, std::string> seeds;
+  const auto doc = nlohmann::json::parse(definition, nullptr, false);
+  if (!doc.is_object() || !doc.contains("sweeps") || !doc["sweeps"].is_array()) return seeds;
+  for (const auto& s : doc["sweeps"]) {
+    if (s.is_object() && s.contains("name") && s["name"].is_string()) {
+      seeds[s["name"].get<std::string>()] =
+          s.contains("seed") && s["seed"].is_string() ? s["seed"].get<std::string>() : "";
+    }
+  }
+  return seeds;
+}
+
+// the stored definition with each sweep of `campaign` (a campaign_definition) put in place of
+// the stored sweep of its name, or added after the others
+std::string joined_definition(const std::string& stored, const std::string& campaign) {
+  auto doc = nlohmann::json::parse(stored, nullptr, false);
+  auto add = nlohmann::json::parse(campaign);
+  if (!doc.is_object() || !doc.contains("sweeps") || !doc["sweeps"].is_array()) return campaign;
+  auto& sweeps = doc["sweeps"];
+  for (auto& s : add["sweeps"]) {
+    const auto same = std::find_if(sweeps.begin(), sweeps.end(), [&](const nlohmann::json& held) {
+      return held.is_object() && held.contains("name") && held["name"] == s["name"];
+    });
+    if (same != sweeps.end()) {
+      *same = std::move(s);
+    } else {
+      sweeps.push_back(std::move(s));
+    }
+  }
+  return doc.dump();
+}
+
+// the numbers in the store of a sweep's points (-1 for a point it does not hold), given each
+// point's axis values and scenario hash: the stored point whose scenario resolved alike is the
+// same point, whatever its number. Throws StoreError when the store holds the sweep with another
+// master seed, or a point of the same values whose scenario resolved otherwise (the runs would
+// be of another sweep: another base scenario, [set] or --set)
+void number_points(const std::string& path, const std::map<std::string, std::string>& seeds,
+                   const std::string& sweep, const std::string& seed,
+                   const std::vector<std::string>& axis_values,
+                   const std::vector<std::string>& hashes, const std::vector<StoredPoint>& stored,
+                   std::vector<int>& numbers, const std::string& hint) {
+  const auto held_seed = seeds.find(sweep);
+  if (held_seed != seeds.end() && !held_seed->second.empty() && held_seed->second != seed) {
+    throw StoreError("results store '" + path + "' holds sweep '" + sweep +
+                     "' run with master seed " + shown(held_seed->second) +
+                     "; this sweep has seed " + seed + " (its runs would all differ)" + hint);
+  }
+  std::map<std::string, int> by_hash;
+  std::map<std::string, const StoredPoint*> by_values;
+  for (const auto& p : stored) {
+    if (p.sweep != sweep) continue;
+    by_hash.try_emplace(p.config_hash, p.point);
+    by_values.try_emplace(p.axis_values, &p);
+  }
+  numbers.resize(hashes.size(), -1);
+  for (std::size_t i = 0; i < hashes.size(); ++i) {
+    const auto same = by_hash.find(hashes[i]);
+    if (same != by_hash.end()) {
+      numbers[i] = same->second;
+      continue;
+    }
+    const auto alike = by_values.find(axis_values[i]);
+    if (alike != by_values.end()) {
+      throw StoreError(
+          "results store '" + path + "' holds sweep '" + sweep + "' at point (" + axis_values[i] +
+          ") with another resolved scenario than this sweep's (another base "
+          "scenario, [set] or --set: scenario hash " +
+          shown(alike->second->config_hash) + " there, " + hashes[i] + " here)" + hint);
+    }
+    numbers[i] = -1;
+  }
+}
+
+// the stored runs of points numbered `numbers` in `sweep`, as `point` of the campaign: a row of
+// a point the campaign has twice (the same scenario under two values) is given to both
+std::vector<RunRow> renumbered(const std::vector<RunRow>& rows,
+                               const std::map<std::pair<std::string, int>, std::vector<int>>& at) {
+  std::vector<RunRow> out;
+  for (const auto& r : rows) {
+    const auto it = at.find({r.sweep, r.point});
+    if (it == at.end()) continue;
+    for (const int point : it->second) {
+      RunRow copy = r;
+      copy.point = point;
+      out.push_back(std::move(copy));
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const RunRow& a, const RunRow& b) {
+    return std::tie(a.sweep, a.point, a.trial) < std::tie(b.sweep, b.point, b.trial);
+  });
+  return out;
+}
+
 }  // namespace
+
+Store::Store(const std::string& path, const std::vector<ExpandedSweep>& campaign,
+             std::string_view version, bool fresh)
+    : path_(path), definition_(campaign_definition(campaign)), bound_(true) {
+  for (const auto& sweep : campaign) {
+    CampaignSweep s{sweep.def.name, std::to_string(sweep.def.seed), {}, {}, {}};
+    for (const auto& p : sweep.points) {
+      s.axis_values.push_back(axis_values_text(sweep.def, p));
+      s.hashes.push_back(p.config_hash);
+    }
+    s.numbers.assign(sweep.points.size(), -1);
+    campaign_.push_back(std::move(s));
+  }
+  open(version, fresh);
+}
 
 Store::Store(const std::string& path, const std::string& definition, std::string_view version,
              bool fresh)
     : path_(path), definition_(definition) {
-  db_ = open_db(path, path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  open(version, fresh);
+}
+
+void Store::accept(const std::string& definition, const std::string& version, std::string_view want,
+                   const std::vector<StoredPoint>& points, const std::string& hint) const {
+  if (version != want) {
+    throw StoreError("results store '" + path_ + "' was written by plumetrace " + version +
+                     ", this is " + std::string(want) + hint);
+  }
+  if (!bound_) {
+    if (definition != definition_) {
+      throw StoreError("results store '" + path_ + "' holds runs of a different sweep definition" +
+                       hint);
+    }
+    return;
+  }
+  const auto seeds = stored_seeds(definition);
+  for (auto& s : campaign_) {
+    number_points(path_, seeds, s.name, s.seed, s.axis_values, s.hashes, points, s.numbers, hint);
+  }
+}
+
+void Store::open(std::string_view version, bool fresh) {
+  db_ = open_db(path_, path_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   try {
     if (sqlite3_db_readonly(db_, "main") == 1) {
-      throw StoreIoError("results store '" + path + "': cannot write it (a read-only file)");
+      throw StoreIoError("results store '" + path_ + "': cannot write it (a read-only file)");
     }
     const std::string discard = "; use --fresh to discard its runs, or another --store";
     // what the file holds, read before anything is written to it
@@ -1159,14 +1330,7 @@ Store::Store(const std::string& path, const std::string& definition, std::string
         } catch (const StoreError& e) {
           throw StoreError(e.what() + discard);
         }
-        if (held.info.definition != definition) {
-          throw StoreError("results store '" + path +
-                           "' holds runs of a different sweep definition" + discard);
-        }
-        if (held.info.version != version) {
-          throw StoreError("results store '" + path + "' was written by plumetrace " +
-                           held.info.version + ", this is " + std::string(version) + discard);
-        }
+        accept(held.info.definition, held.info.version, version, held.points, discard);
       }
     }
     // why: WAL with synchronous=NORMAL keeps every committed batch through a kill -9, and lets
@@ -1179,30 +1343,40 @@ Store::Store(const std::string& path, const std::string& definition, std::string
       const Layout layout = layout_of(db_, path_, &found);
       if (layout == Layout::kForeign) not_a_store(path_, found);
       if (layout == Layout::kPlumetrace && !fresh) {
-        if (meta("definition") != definition || meta("version") != version) {
-          throw StoreError("results store '" + path +
-                           "' was given another definition or version by another process" +
-                           discard);
-        }
+        accept(meta("definition"), meta("version"), version, point_index(db_, path_),
+               " (another process wrote it meanwhile)" + discard);
         if (meta("schema") == kLegacySchema) {
           // a store of schema 1, checked above: its checksums from now on
           const auto [runs, points] = checksums_of(load(db_, path_));
           put_meta(db_, path_, "check:runs", runs.text());
           put_meta(db_, path_, "check:points", points.text());
+        }
+        // a store of schema 1 or 2: its points are numbered in grid order, as schema 3 may
+        // number them; it gains an epoch
+        if (meta("schema") != kSchemaVersion) {
           put_meta(db_, path_, "schema", std::string(kSchemaVersion));
+        }
+        if (meta("epoch").empty()) put_meta(db_, path_, "epoch", new_epoch());
+        epoch_ = meta("epoch");
+        if (bound_) {
+          const std::string joined = joined_definition(meta("definition"), definition_);
+          if (joined != meta("definition")) put_meta(db_, path_, "definition", joined);
         }
         return;
       }
       if (layout == Layout::kPlumetrace) {
         exec("DELETE FROM runs; DELETE FROM points; DELETE FROM meta;");
+        for (auto& s : campaign_) s.numbers.assign(s.numbers.size(), -1);
       } else {
         exec(schema_sql());
       }
-      for (const auto& [k, v] : {std::pair<std::string, std::string>{"definition", definition},
+      epoch_ = new_epoch();
+      for (const auto& [k, v] : {std::pair<std::string, std::string>{"definition", definition_},
                                  {"version", std::string(version)},
                                  {"schema", std::string(kSchemaVersion)},
                                  {"check:runs", Checksum{}.text()},
-                                 {"check:points", Checksum{}.text()}}) {
+                                 {"check:points", Checksum{}.text()},
+                                 {"epoch", epoch_}}) {
         put_meta(db_, path_, k, v);
       }
     });
@@ -1236,38 +1410,105 @@ std::string Store::meta(const std::string& key) const { return meta_value(db_, p
 std::string Store::definition() const { return meta("definition"); }
 
 void Store::check_definition() const {
-  if (meta("definition") != definition_) {
+  // why: only --fresh renews the epoch; another process that adds points or sweeps leaves every
+  // number this one knows as it was
+  if (meta("epoch") != epoch_) {
     throw StoreError("results store '" + path_ +
                      "' was emptied for another definition by another process (--fresh?) while "
                      "this one wrote it; nothing more is written to it");
   }
 }
 
+void Store::find_points(bool all) const {
+  if (!bound_) return;
+  if (!all) {
+    bool missing = false;
+    for (const auto& s : campaign_) {
+      missing = missing || std::find(s.numbers.begin(), s.numbers.end(), -1) != s.numbers.end();
+    }
+    if (!missing) return;
+  }
+  // points another process has recorded since
+  const auto points = point_index(db_, path_);
+  const auto seeds = stored_seeds(meta("definition"));
+  for (auto& s : campaign_) {
+    number_points(path_, seeds, s.name, s.seed, s.axis_values, s.hashes, points, s.numbers, "");
+  }
+}
+
+std::vector<RunRow> Store::numbered(std::vector<RunRow> rows) const {
+  if (!bound_) return rows;
+  std::map<std::pair<std::string, int>, std::vector<int>> at;
+  for (const auto& s : campaign_) {
+    for (std::size_t i = 0; i < s.numbers.size(); ++i) {
+      if (s.numbers[i] >= 0) at[{s.name, s.numbers[i]}].push_back(static_cast<int>(i));
+    }
+  }
+  return renumbered(rows, at);
+}
+
 void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
+  if (!bound_) throw std::logic_error("Store::put_points: a store without a campaign takes none");
+  bool same = sweeps.size() == campaign_.size();
+  for (std::size_t k = 0; same && k < sweeps.size(); ++k) {
+    same = sweeps[k].def.name == campaign_[k].name &&
+           sweeps[k].points.size() == campaign_[k].hashes.size();
+    for (std::size_t i = 0; same && i < sweeps[k].points.size(); ++i) {
+      same = sweeps[k].points[i].config_hash == campaign_[k].hashes[i];
+    }
+  }
+  if (!same) throw std::logic_error("Store::put_points: not the campaign the store was opened for");
+  std::vector<CampaignSweep> numbered = campaign_;
   in_transaction([&] {
     check_definition();
+    const auto points = point_index(db_, path_);
+    const auto seeds = stored_seeds(meta("definition"));
+    std::map<std::string, int> next;
+    for (const auto& p : points) next[p.sweep] = std::max(next[p.sweep], p.point + 1);
     PointWriter writer(db_, path_);
-    for (const auto& sweep : sweeps) {
-      for (const auto& p : sweep.points) {
-        StoredPoint point{sweep.def.name, p.index, "", p.config_hash, scenario_to_toml(p.scenario)};
-        for (std::size_t a = 0; a < p.values.size(); ++a) {
-          point.axis_values +=
-              (a ? ", " : "") + sweep.def.axes[a].key + " = " + format_value(p.values[a]);
-        }
-        writer.put(point);
+    for (std::size_t k = 0; k < sweeps.size(); ++k) {
+      CampaignSweep& s = numbered[k];
+      number_points(path_, seeds, s.name, s.seed, s.axis_values, s.hashes, points, s.numbers, "");
+      // a point new to the store takes its sweep's next number; the same scenario twice in the
+      // campaign is one point
+      std::map<std::string, int> added;
+      for (std::size_t i = 0; i < s.numbers.size(); ++i) {
+        if (s.numbers[i] >= 0) continue;
+        const auto [it, fresh_point] = added.try_emplace(s.hashes[i], next[s.name]);
+        s.numbers[i] = it->second;
+        if (!fresh_point) continue;
+        ++next[s.name];
+        writer.put({s.name, s.numbers[i], s.axis_values[i], s.hashes[i],
+                    scenario_to_toml(sweeps[k].points[i].scenario)});
       }
     }
     writer.finish();
   });
+  campaign_ = std::move(numbered);
 }
 
 void Store::insert(const std::vector<RunRow>& rows) {
   in_transaction([&] {
     check_definition();
+    find_points(false);
     RunWriter writer(db_, path_);
-    for (const auto& r : rows) {
+    for (const auto& given : rows) {
+      RunRow r = given;
+      if (bound_) {
+        const auto s = std::find_if(campaign_.begin(), campaign_.end(),
+                                    [&](const CampaignSweep& c) { return c.name == r.sweep; });
+        const int number = s == campaign_.end() || r.point < 0 ||
+                                   static_cast<std::size_t>(r.point) >= s->numbers.size()
+                               ? -1
+                               : s->numbers[static_cast<std::size_t>(r.point)];
+        if (number < 0) {
+          throw std::logic_error("Store::insert: " + key_text(r) +
+                                 " is not a recorded point of the campaign (put_points first)");
+        }
+        r.point = number;
+      }
       if (writer.add(r) == RunWriter::Added::kDifferent) {
-        throw StoreError("results store '" + path_ + "' already holds " + key_text(r) +
+        throw StoreError("results store '" + path_ + "' already holds " + key_text(given) +
                          " with other results than the ones computed now (written by another "
                          "build of plumetrace?)");
       }
@@ -1306,19 +1547,36 @@ StoreInfo Store::info() const {
 
 std::set<RunKey> Store::keys() const {
   const ReadTransaction read(db_, path_);
+  find_points(true);
+  std::map<std::pair<std::string, int>, std::vector<int>> at;
+  for (const auto& s : campaign_) {
+    for (std::size_t i = 0; i < s.numbers.size(); ++i) {
+      if (s.numbers[i] >= 0) at[{s.name, s.numbers[i]}].push_back(static_cast<int>(i));
+    }
+  }
   Statement q(db_, "SELECT sweep, point, trial FROM runs", path_);
   const int sweep = q.column("sweep"), point = q.column("point"), trial = q.column("trial");
   std::set<RunKey> keys;
   while (q.step()) {
-    keys.emplace(q.text(sweep), static_cast<int>(q.integer(point)),
-                 static_cast<std::uint64_t>(q.integer(trial)));
+    const std::string name = q.text(sweep);
+    const int number = static_cast<int>(q.integer(point));
+    const auto t = static_cast<std::uint64_t>(q.integer(trial));
+    if (!bound_) {
+      keys.emplace(name, number, t);
+      continue;
+    }
+    const auto it = at.find({name, number});
+    if (it == at.end()) continue;
+    for (const int p : it->second) keys.emplace(name, p, t);
   }
   return keys;
 }
 
 std::vector<RunRow> Store::rows() const {
   const ReadTransaction read(db_, path_);
-  return load(db_, path_).rows;
+  StoreContents held = load(db_, path_);
+  find_points(true);
+  return numbered(std::move(held.rows));
 }
 
 StoreContents read_store(const std::string& path) {
@@ -1333,6 +1591,39 @@ std::vector<RunRow> read_store_rows(const std::string& path, std::string* defini
   StoreContents c = read_store(path);
   if (definition) *definition = c.info.definition;
   return std::move(c.rows);
+}
+
+std::vector<RunRow> read_campaign_rows(const std::string& path,
+                                       const std::vector<ExpandedSweep>& campaign) {
+  const StoreContents held = read_store(path);
+  const auto seeds = stored_seeds(held.info.definition);
+  const std::string hint = "; give the sweep files and --set values the store was made with";
+  std::map<std::pair<std::string, int>, std::vector<int>> at;
+  for (const auto& sweep : campaign) {
+    const std::string& name = sweep.def.name;
+    const bool stored =
+        seeds.count(name) > 0 || std::any_of(held.points.begin(), held.points.end(),
+                                             [&](const StoredPoint& p) { return p.sweep == name; });
+    if (!stored) {
+      std::string names;
+      for (const auto& [held_name, seed] : seeds) names += (names.empty() ? "" : ", ") + held_name;
+      throw StoreError("results store '" + path + "' holds no runs of sweep '" + name +
+                       "' (it holds " + (names.empty() ? "no sweep" : "sweeps " + names) +
+                       "): it was not made from these sweep files");
+    }
+    std::vector<std::string> values, hashes;
+    for (const auto& p : sweep.points) {
+      values.push_back(axis_values_text(sweep.def, p));
+      hashes.push_back(p.config_hash);
+    }
+    std::vector<int> numbers;
+    number_points(path, seeds, name, std::to_string(sweep.def.seed), values, hashes, held.points,
+                  numbers, hint);
+    for (std::size_t i = 0; i < numbers.size(); ++i) {
+      if (numbers[i] >= 0) at[{name, numbers[i]}].push_back(static_cast<int>(i));
+    }
+  }
+  return renumbered(held.rows, at);
 }
 
 namespace {
@@ -1354,10 +1645,34 @@ MergeReport Store::absorb(const std::vector<std::string>& parts,
   MergeReport report;
   in_transaction([&] {
     check_definition();
+    // each part's points as this store numbers them: a point is found by its scenario (parts
+    // may number the points of a sweep given more values otherwise); a point new to the store
+    // takes its sweep's next number
+    std::vector<std::map<std::pair<std::string, int>, int>> number_in(parts.size());
     {
+      std::vector<StoredPoint> held = point_index(db_, path_);
+      std::map<std::string, int> next;
+      for (const auto& p : held) next[p.sweep] = std::max(next[p.sweep], p.point + 1);
       PointWriter points(db_, path_);
-      for (const auto& part : contents) {
-        for (const auto& p : part.points) points.put(p);
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        for (const auto& p : contents[k].points) {
+          std::vector<int> number;
+          try {
+            number_points(path_, {}, p.sweep, "", {p.axis_values}, {p.config_hash}, held, number,
+                          "");
+          } catch (const StoreError& e) {
+            throw StoreError("merge: '" + parts[k] +
+                             "' and the points merged before it differ: " + e.what());
+          }
+          if (number[0] < 0) {
+            StoredPoint added = p;
+            added.point = next[p.sweep]++;
+            points.put(added);
+            number[0] = added.point;
+            held.push_back(std::move(added));
+          }
+          number_in[k][{p.sweep, p.point}] = number[0];
+        }
       }
       points.finish();
     }
@@ -1368,7 +1683,9 @@ MergeReport Store::absorb(const std::vector<std::string>& parts,
       std::int64_t overlaps = 0;
       std::string first_overlap;
       std::size_t other = 0;
-      for (const RunRow& r : contents[k].rows) {
+      for (const RunRow& given : contents[k].rows) {
+        RunRow r = given;
+        r.point = number_in[k].at({r.sweep, r.point});
         const auto [it, added] = origin.try_emplace({r.sweep, r.point, r.trial}, k);
         if (!added) {
           if (overlaps++ == 0) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <system_error>
 
@@ -20,6 +21,37 @@ std::string hash_text(const std::string& text) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
+}
+
+std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps) {
+  using nlohmann::json;
+  const auto value_json = [](const ConfigValue& v) {
+    return std::visit([](const auto& x) { return json(x); }, v);
+  };
+  json all = json::array();
+  for (const auto& s : sweeps) {
+    json axes = json::array();
+    for (const auto& a : s.def.axes) {
+      json values = json::array();
+      for (const auto& v : a.values) values.push_back(value_json(v));
+      axes.push_back({{"key", a.key}, {"values", values}});
+    }
+    json points = json::array();
+    for (const auto& p : s.points) points.push_back(p.config_hash);
+    all.push_back({{"name", s.def.name},
+                   {"seed", std::to_string(s.def.seed)},
+                   {"axes", axes},
+                   {"point_configs", points}});
+  }
+  return json{{"sweeps", all}}.dump();
+}
+
+std::string axis_values_text(const SweepDef& def, const SweepPoint& point) {
+  std::string text;
+  for (std::size_t a = 0; a < point.values.size() && a < def.axes.size(); ++a) {
+    text += (a ? ", " : "") + def.axes[a].key + " = " + format_value(point.values[a]);
+  }
+  return text;
 }
 
 namespace {

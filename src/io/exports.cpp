@@ -10,7 +10,6 @@
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
-#include "plumetrace/io/sweep_file.hpp"
 
 namespace plumetrace {
 
@@ -77,16 +76,13 @@ void write_exports(const std::string& out, const std::vector<ExpandedSweep>& swe
   write_results_json(out + "/results.json", sweeps, rows, runs_override);
 }
 
-void export_store(const std::string& store, const std::vector<ExpandedSweep>& sweeps,
-                  const std::string& out, int runs_override) {
-  std::string definition;
-  const auto rows = read_store_rows(store, &definition);
-  if (definition != campaign_definition(sweeps)) {
-    throw StoreError("results store '" + store +
-                     "' was not made from these sweep files (or with other --set overrides)");
-  }
+std::vector<IncompletePoint> export_store(const std::string& store,
+                                          const std::vector<ExpandedSweep>& sweeps,
+                                          const std::string& out, int runs_override) {
+  const auto rows = read_campaign_rows(store, sweeps);
   std::filesystem::create_directories(out);
   write_exports(out, sweeps, rows, runs_override);
+  return incomplete_points(sweeps, rows, runs_override);
 }
 
 }  // namespace plumetrace

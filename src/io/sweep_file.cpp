@@ -1,10 +1,8 @@
 #include "plumetrace/io/sweep_file.hpp"
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 
-#include "plumetrace/io/json_util.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/toml_input.hpp"
 
@@ -12,8 +10,6 @@ namespace plumetrace {
 
 using detail::flatten;
 using detail::parse_toml_file;
-using detail::value_to_json;
-using nlohmann::json;
 
 using detail::toml_scalar;
 
@@ -68,16 +64,27 @@ SweepDef read_sweep_file(const std::string& path) {
           }
         }
         if (axis.key.empty()) fail("[[axis]]: missing key = \"dotted.config.key\"");
-        if (axis.values.empty()) fail("axis " + axis.key + ": values must not be empty");
-        for (const auto& other : def.axes) {
-          if (other.key == axis.key) fail("axis " + axis.key + " is given twice");
-        }
         if (axis.label.empty()) axis.label = axis.key;
         def.axes.push_back(std::move(axis));
       }
     } else {
       fail("unknown or mistyped key '" + key +
            "' (keys: name, title, scenario, runs, seed, [set], [[axis]])");
+    }
+  }
+  check_sweep_def(def, path);
+  if (!def.scenario_path.empty()) def.scenario_settings = read_scenario_file(def.scenario_path);
+  return def;
+}
+
+void check_sweep_def(const SweepDef& def, const std::string& where) {
+  const auto fail = [&](const std::string& msg) { throw ConfigError(where + ": " + msg); };
+  for (std::size_t a = 0; a < def.axes.size(); ++a) {
+    const Axis& axis = def.axes[a];
+    if (axis.key.empty()) fail("an axis has no key (a dotted config key)");
+    if (axis.values.empty()) fail("axis " + axis.key + ": values must not be empty");
+    for (std::size_t b = 0; b < a; ++b) {
+      if (def.axes[b].key == axis.key) fail("axis " + axis.key + " is given twice");
     }
   }
   if (def.name.empty()) fail("missing name = \"...\"");
@@ -93,27 +100,6 @@ SweepDef read_sweep_file(const std::string& path) {
       }
     }
   }
-  if (!def.scenario_path.empty()) def.scenario_settings = read_scenario_file(def.scenario_path);
-  return def;
-}
-
-std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps) {
-  json all = json::array();
-  for (const auto& s : sweeps) {
-    json axes = json::array();
-    for (const auto& a : s.def.axes) {
-      json values = json::array();
-      for (const auto& v : a.values) values.push_back(value_to_json(v));
-      axes.push_back({{"key", a.key}, {"values", values}});
-    }
-    json points = json::array();
-    for (const auto& p : s.points) points.push_back(p.config_hash);
-    all.push_back({{"name", s.def.name},
-                   {"seed", std::to_string(s.def.seed)},
-                   {"axes", axes},
-                   {"point_configs", points}});
-  }
-  return json{{"sweeps", all}}.dump();
 }
 
 }  // namespace plumetrace

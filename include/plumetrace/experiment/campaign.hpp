@@ -55,4 +55,18 @@ CampaignResult run_campaign(const std::vector<ExpandedSweep>& sweeps, Store& sto
 std::vector<RunResult> point_runs(const std::vector<RunRow>& rows, const std::string& sweep,
                                   int point, int runs);
 
+/// A point of a campaign with fewer stored runs than its sweep asks for.
+struct IncompletePoint {
+  std::string sweep;        ///< sweep name
+  int point = 0;            ///< point index in the sweep
+  std::string values;       ///< its axis values, "key = value, ..."
+  std::int64_t stored = 0;  ///< runs stored (trials 0..runs-1)
+  int runs = 0;             ///< runs per point asked
+};
+
+/// The points of a campaign with fewer runs in `rows` (numbered by the campaign's points) than
+/// their sweep's runs per point, in campaign order.
+std::vector<IncompletePoint> incomplete_points(const std::vector<ExpandedSweep>& sweeps,
+                                               const std::vector<RunRow>& rows, int runs_override);
+
 }  // namespace plumetrace

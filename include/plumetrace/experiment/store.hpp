@@ -84,34 +84,50 @@ struct MergeReport {
   std::vector<std::string> missing_shards;  ///< "i/n" shards no part holds (all parts of n)
 };
 
-/// The embedded SQLite results store: one row per run, plus the campaign definition, the
-/// program version and a checksum of the runs and of the points. Every write is one
-/// transaction; several processes may write one store at once.
+/// The embedded SQLite results store: one row per run, plus each sweep's definition, the
+/// program version and a checksum of the runs and of the points. A point is identified by its
+/// values: the store numbers the points of a sweep itself, in the order they were first stored,
+/// and finds a campaign's points by the scenario they resolve to, so a sweep given more values
+/// keeps every run already stored. Every write is one transaction; several processes may write
+/// one store at once.
 class Store {
  public:
-  /// Opens or creates the store at `path` for a campaign definition (JSON) and version, checked
-  /// as read_store does before anything is written. An empty file (or a database without tables)
-  /// is a new store. Refuses another program's database, always; refuses a damaged store or one
-  /// holding another definition or version unless `fresh`, which empties it first.
+  /// Opens or creates the store at `path` for a campaign and version, checked as read_store
+  /// does before anything is written. An empty file (or a database without tables) is a new
+  /// store. The store may hold other sweeps and other points of the campaign's sweeps (values
+  /// added or removed since): the campaign uses the runs of the points it shares with it.
+  /// Refuses another program's database, always; refuses a damaged store, one of another
+  /// version, one holding a sweep of the same name with another master seed, or a point of the
+  /// same values whose scenario resolved otherwise (another base scenario or --set), unless
+  /// `fresh`, which empties it first.
+  Store(const std::string& path, const std::vector<ExpandedSweep>& campaign,
+        std::string_view version, bool fresh);
+  /// Opens or creates a store without a campaign, whose rows carry the store's own point
+  /// numbers (merge_stores, benchmarks); it must hold `definition` (JSON) and `version`, or be
+  /// new, unless `fresh`, which empties it first.
   Store(const std::string& path, const std::string& definition, std::string_view version,
         bool fresh);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
 
-  /// Records the points of the campaign (axis values and resolved configs), once.
+  /// Records the campaign's points that the store does not hold yet (axis values and resolved
+  /// configs), each under its sweep's next free number; `sweeps` must be the store's campaign.
   void put_points(const std::vector<ExpandedSweep>& sweeps);
   /// Records the runs per point asked of each sweep (the largest asked so far is kept) and the
   /// shard the store holds ("i/n", "" for the whole campaign); `merge_stores` reads them.
   void put_plan(const std::vector<std::pair<std::string, int>>& runs, const std::string& shard);
-  /// Appends runs in one transaction. A run the store already holds (another process computed
+  /// Appends runs in one transaction; a campaign's rows are numbered by its points, whose
+  /// points put_points has recorded. A run the store already holds (another process computed
   /// it) is skipped when identical and refused otherwise, with StoreError.
   void insert(const std::vector<RunRow>& rows);
-  /// Keys of every stored run.
+  /// Keys of the stored runs of the campaign's points, numbered by them (of every stored run,
+  /// for a store without a campaign).
   std::set<RunKey> keys() const;
-  /// Every stored run, ordered by (sweep, point, trial), checked as read_store does.
+  /// The stored runs of the campaign's points numbered by them (every stored run, for a store
+  /// without a campaign), ordered by (sweep, point, trial), checked as read_store does.
   std::vector<RunRow> rows() const;
-  /// The stored definition (JSON).
+  /// The stored definition (JSON): each sweep's as it was last opened with the store.
   std::string definition() const;
   /// What the store says about itself (definition, version, shard, runs and points per sweep).
   StoreInfo info() const;
@@ -128,11 +144,35 @@ class Store {
   void in_transaction(const std::function<void()>& work);
   std::string meta(const std::string& key) const;
   void check_definition() const;
+  void open(std::string_view version, bool fresh);
+  void accept(const std::string& definition, const std::string& version, std::string_view want,
+              const std::vector<StoredPoint>& points, const std::string& hint) const;
+  void find_points(bool all) const;
+  std::vector<RunRow> numbered(std::vector<RunRow> rows) const;
+
+  /// A sweep of the campaign: what identifies its points, and their numbers in the store.
+  struct CampaignSweep {
+    std::string name;                      ///< sweep name
+    std::string seed;                      ///< master seed, as the definition writes it
+    std::vector<std::string> axis_values;  ///< per point: "key = value, ..."
+    std::vector<std::string> hashes;       ///< per point: hash of the resolved scenario
+    std::vector<int> numbers;              ///< per point: its number in the store, or -1
+  };
 
   std::string path_;
   std::string definition_;
+  bool bound_ = false;                           ///< opened for a campaign
+  mutable std::vector<CampaignSweep> campaign_;  ///< the campaign's sweeps (when bound_)
+  std::string epoch_;                            ///< the store's epoch when it was opened
   sqlite3* db_ = nullptr;
 };
+
+/// The runs of a campaign that the existing store at `path` holds (read-only, checked as
+/// read_store does), numbered by the campaign's points, ordered by (sweep, point, trial). Throws
+/// StoreError naming the file when a sweep of the campaign is not in the store, has another
+/// master seed there, or has a stored point of the same values whose scenario resolved otherwise.
+std::vector<RunRow> read_campaign_rows(const std::string& path,
+                                       const std::vector<ExpandedSweep>& campaign);
 
 /// The runs of an existing store (read_store), and its definition when asked.
 std::vector<RunRow> read_store_rows(const std::string& path, std::string* definition);

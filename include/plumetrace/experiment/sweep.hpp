@@ -91,6 +91,13 @@ std::int64_t grid_points(const SweepDef& def);
 /// ConfigError naming the sweep, axis and value.
 ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& overrides);
 
+/// The identity of a campaign as canonical JSON: each sweep's name, master seed, axes and the
+/// hash of every point's resolved scenario (not the runs per point).
+std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps);
+
+/// A point's axis values as a store records them: "key = value, ..." in axis order.
+std::string axis_values_text(const SweepDef& def, const SweepPoint& point);
+
 /// FNV-1a 64-bit hash of a text, as 16 hex digits.
 std::string hash_text(const std::string& text);
 

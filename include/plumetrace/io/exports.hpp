@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/store.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 
@@ -13,10 +14,13 @@ namespace plumetrace {
 void write_exports(const std::string& out, const std::vector<ExpandedSweep>& sweeps,
                    const std::vector<RunRow>& rows, int runs_override);
 
-/// Writes the exports of the results store `store` into the folder `out` (created if needed),
-/// after checking that the store was made from `sweeps`: throws StoreError when it was not.
-void export_store(const std::string& store, const std::vector<ExpandedSweep>& sweeps,
-                  const std::string& out, int runs_override);
+/// Writes the exports of the results store `store` for the campaign `sweeps` into the folder
+/// `out` (created if needed): the runs of its points the store holds (read_campaign_rows, which
+/// throws StoreError for a store not made from these sweeps); returns the points with runs
+/// missing.
+std::vector<IncompletePoint> export_store(const std::string& store,
+                                          const std::vector<ExpandedSweep>& sweeps,
+                                          const std::string& out, int runs_override);
 
 /// The points' success rates and mean overheads with their 95% intervals, one line each under
 /// a header, as `plumetrace sweep` prints them.

@@ -12,8 +12,9 @@ namespace plumetrace {
 /// wrong type, ...). The scenario path is resolved from the file's folder.
 SweepDef read_sweep_file(const std::string& path);
 
-/// The identity of a campaign (its sweeps, points and resolved configs; not the runs per point)
-/// as canonical JSON: stores refuse to mix results of different definitions.
-std::string campaign_definition(const std::vector<ExpandedSweep>& sweeps);
+/// Checks a sweep as read_sweep_file checks a file's (for sweeps built in code, such as a
+/// Python dict of axes): a name, at least one axis, none empty or given twice, every value
+/// valid for its key; throws ConfigError naming `where`, the axis and the key.
+void check_sweep_def(const SweepDef& def, const std::string& where);
 
 }  // namespace plumetrace

@@ -1,6 +1,7 @@
-"""The reproduction report, built from a `plumetrace reproduce` output folder.
+"""The reports: the paper's reproduction (this package) and any sweep's (report/sweep.py).
 
-    python3 -m plumetrace.report OUT_DIR    (the package installed; docs/report.md)
+    python3 -m plumetrace.report OUT_DIR    (the package installed; docs/report.md): the paper's
+    plumetrace.report(rows_or_sweep, store=..., out=...)    any sweep's, from Python
 
 reads OUT_DIR/summary.json (and OUT_DIR/sensitivity.json when it exists) and writes
 OUT_DIR/report.html (self-contained: every figure is embedded as a data URI), OUT_DIR/report.md
@@ -13,6 +14,8 @@ library, numpy and matplotlib (Agg) are used.
 
 from __future__ import annotations
 
+import sys
+import types
 from pathlib import Path
 from typing import Union
 
@@ -38,3 +41,18 @@ def build_report(out_dir: Union[str, Path]) -> list:
     figures: list = []
     title, intro, sections = document(out_dir, fig_dir, summary, sens, figures)
     return write_pages(out_dir, title, intro, sections) + figures
+
+
+class _CallableModule(types.ModuleType):
+    """This package, callable: ``plumetrace.report(...)`` draws the report of any sweep
+    (report_sweep, report/sweep.py), while ``python3 -m plumetrace.report OUT`` draws the
+    paper's."""
+
+    def __call__(self, *args, **kwargs):
+        # why: imported here, so that python3 -m plumetrace.report.sweep runs it fresh
+        from .sweep import report_sweep
+
+        return report_sweep(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule

@@ -351,7 +351,9 @@ class Point:
     config_hash: Optional[str]
 
     @staticmethod
-    def from_json(p: dict) -> "Point":
+    def from_json(p: dict, t_interval: bool = False) -> "Point":
+        """A point of summary.json or results.json; the overhead's interval is the bootstrap's
+        where the file gives it, or with `t_interval` the t interval (lo, hi)."""
         runs = _int(p.get("runs")) or 0
         successes = _int(p.get("successes")) or 0
         rate = _num(p.get("success_rate"))
@@ -373,8 +375,10 @@ class Point:
             rate_hi=hi,
             oh_n=successes if oh_n is None else oh_n,
             oh_mean=_num(oh.get("mean")),
-            oh_lo=_num(oh.get("boot_lo")) if "boot_lo" in oh else _num(oh.get("lo")),
-            oh_hi=_num(oh.get("boot_hi")) if "boot_hi" in oh else _num(oh.get("hi")),
+            oh_lo=_num(oh.get("boot_lo")) if "boot_lo" in oh and not t_interval
+            else _num(oh.get("lo")),
+            oh_hi=_num(oh.get("boot_hi")) if "boot_hi" in oh and not t_interval
+            else _num(oh.get("hi")),
             oh_median=_num(oh.get("median")),
             oh_q1=_num(oh.get("q1")),
             oh_q3=_num(oh.get("q3")),

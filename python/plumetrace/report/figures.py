@@ -74,8 +74,33 @@ def _asym_err(centre: Sequence[Optional[float]], lo, hi, scale: float = 1.0):
     return np.array([below, above])
 
 
-def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_n: bool = True):
-    """Overhead bars from 1 (the straight-line optimum) with bootstrap intervals and medians.
+def _rate_axis(ax, x, points: Sequence[Point], colors: Sequence[str], width: float = 0.7,
+               label_counts: bool = True, label: Optional[str] = None, count_rotation: int = 0):
+    """Success-rate bars (%) with their Wilson intervals, and "k/n" above each; returns the
+    bars."""
+    rates = [p.rate for p in points]
+    heights = [100 * r if r is not None else 0.0 for r in rates]
+    bars = ax.bar(x, heights, width=width, color=colors, edgecolor="#333333", linewidth=0.4,
+                  zorder=2, label=label)
+    err = _asym_err(rates, [p.rate_lo for p in points], [p.rate_hi for p in points], 100)
+    ax.errorbar(x, heights, yerr=err, fmt="none", ecolor="black", elinewidth=1, capsize=3,
+                zorder=3)
+    if label_counts:
+        for xi, p in zip(x, points):
+            top = 100 * (p.rate_hi if p.rate_hi is not None else (p.rate or 0.0))
+            ax.annotate(f"{p.successes}/{p.runs}", (xi, top), xytext=(0, 2),
+                        textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                        rotation=count_rotation)
+    ax.set_ylim(0, 112)
+    ax.set_yticks(range(0, 101, 20))
+    ax.set_ylabel("success rate (%)")
+    return bars
+
+
+def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_n: bool = True,
+                   width: float = 0.7, count_rotation: int = 0):
+    """Overhead bars from 1 (the straight-line optimum) with their intervals (the bootstrap's in
+    the paper's report) and medians.
 
     Returns the indices of points that have no mean overhead (no successful run).
     """
@@ -85,7 +110,7 @@ def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_
     if have:
         hx = np.asarray(x, dtype=float)[have]
         heights = [means[i] - 1.0 for i in have]
-        ax.bar(hx, heights, bottom=1.0, width=0.7, color=[colors[i] for i in have],
+        ax.bar(hx, heights, bottom=1.0, width=width, color=[colors[i] for i in have],
                edgecolor="#333333", linewidth=0.4, zorder=2)
         err = _asym_err([means[i] for i in have], [points[i].oh_lo for i in have],
                         [points[i].oh_hi for i in have])
@@ -106,15 +131,16 @@ def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_
         if label_n:
             for xi, i, t in zip(hx, have, tops):
                 ax.annotate(f"n={points[i].oh_n}", (xi, t), xytext=(0, 2),
-                            textcoords="offset points", ha="center", va="bottom", fontsize=7)
+                            textcoords="offset points", ha="center", va="bottom", fontsize=7,
+                            rotation=count_rotation)
     else:
         ax.set_ylim(0.95, 1.5)
         ax.text(0.5, 0.5, "no successful runs", transform=ax.transAxes, ha="center",
                 va="center", color=MISSING_COLOR)
-    lo_y = ax.get_ylim()[0]
+    # why: at the bottom of the panel whatever limits it gets later (x in data, y in the axes)
     for i in missing:
-        ax.text(x[i], lo_y, " none", rotation=90, ha="center", va="bottom", fontsize=7,
-                color=MISSING_COLOR)
+        ax.text(x[i], 0.0, " none", rotation=90, ha="center", va="bottom", fontsize=7,
+                color=MISSING_COLOR, transform=ax.get_xaxis_transform())
     ax.axhline(1.0, color="#555555", linewidth=0.6, zorder=1)
     ax.set_ylabel("distance overhead $d_t/d_u$")
     return missing
@@ -132,22 +158,10 @@ def set_figure(s: SweepSet, path: Path) -> Path:
     colors = _bar_colors(n, s.fixed_index)
     ticks = [fmt_value(p.value) for p in s.points]
 
-    rates = [p.rate for p in s.points]
-    ax_rate.bar(x, [100 * r if r is not None else 0.0 for r in rates], width=0.7, color=colors,
-                edgecolor="#333333", linewidth=0.4, zorder=2)
-    err = _asym_err(rates, [p.rate_lo for p in s.points], [p.rate_hi for p in s.points], 100)
-    ax_rate.errorbar(x, [100 * r if r is not None else 0.0 for r in rates], yerr=err, fmt="none",
-                     ecolor="black", elinewidth=1, capsize=3, zorder=3)
-    for xi, p in zip(x, s.points):
-        top = 100 * (p.rate_hi if p.rate_hi is not None else (p.rate or 0.0))
-        ax_rate.annotate(f"{p.successes}/{p.runs}", (xi, top), xytext=(0, 2),
-                         textcoords="offset points", ha="center", va="bottom", fontsize=7)
+    _rate_axis(ax_rate, x, s.points, colors)
     if n == 0:
         ax_rate.text(0.5, 0.5, "no points in this set", transform=ax_rate.transAxes,
                      ha="center", va="center", color=MISSING_COLOR)
-    ax_rate.set_ylim(0, 112)
-    ax_rate.set_yticks(range(0, 101, 20))
-    ax_rate.set_ylabel("success rate (%)")
     ax_rate.set_title(f"{s.name}: success rate (Wilson 95%)", fontsize=10)
 
     _overhead_axis(ax_oh, x, s.points, colors)
@@ -171,6 +185,130 @@ def set_figure(s: SweepSet, path: Path) -> Path:
         handles.append(Line2D([], [], linestyle="none", marker="D", markersize=4,
                               color="#f2b134", markeredgecolor="black", label="median overhead"))
     ax_legend.legend(handles=handles, loc="center", ncol=len(handles), fontsize=8, frameon=False)
+    return _save(fig, path)
+
+
+# Colours of the values of a sweep's second axis (hue), after the paper's blue.
+HUE_COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1", "#edc948",
+              "#9c755f")
+
+
+def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[tuple],
+                      x_title: str, fixed_index: Optional[int] = None,
+                      interval: str = "t 95%", runs_per_point: Optional[int] = None) -> None:
+    """The paper's two panels on two axes: success rate (Wilson 95%) and overhead of the
+    successful runs (`interval`), a bar per value of the x axis for each group. `groups`: (label
+    or None, [Point or None per x value]); with several groups the bars of one x value stand side
+    by side, each group in its colour (hue). A point without runs (None) is marked "no runs"; one
+    with fewer runs than `runs_per_point` is hatched."""
+    n = len(x_labels)
+    k = max(len(groups), 1)
+    width = 0.7 if k == 1 else 0.8 / k
+    counts = k * n <= 30
+    no_overhead: list = []
+    for g, (label, points) in enumerate(groups):
+        offset = (g - (k - 1) / 2) * width
+        at = [i for i, p in enumerate(points) if p is not None]
+        xs = [i + offset for i in at]
+        pts = [points[i] for i in at]
+        if k == 1:
+            colors = _bar_colors(n, fixed_index)
+            colors = [colors[i] for i in at]
+        else:
+            colors = [HUE_COLORS[g % len(HUE_COLORS)]] * len(at)
+        bars = _rate_axis(ax_rate, xs, pts, colors, width=width, label_counts=counts,
+                          label=label, count_rotation=90 if k > 1 else 0)
+        for bar, p in zip(bars, pts):
+            if runs_per_point is not None and p.runs < runs_per_point:
+                bar.set_hatch("///")
+        for i, p in enumerate(points):
+            if p is None:
+                ax_rate.text(i + offset, 2, "no runs", rotation=90, ha="center", va="bottom",
+                             fontsize=7, color=MISSING_COLOR)
+        if any(p.oh_mean is not None for p in pts):
+            _overhead_axis(ax_oh, xs, pts, colors, label_n=counts, width=width,
+                           count_rotation=90 if k > 1 else 0)
+        else:
+            no_overhead += xs
+    means = [p for _, pts in groups for p in pts if p is not None and p.oh_mean is not None]
+    if means:
+        # why: each group set the limits for its own bars; the panel shows them all. The t
+        # interval of two or three runs can span metres of overhead: the limits follow the
+        # points of four runs or more where there are any (longer bars run off the panel)
+        steady = [p for p in means if p.oh_n >= 4] or means
+        tops = [p.oh_hi if p.oh_hi is not None else p.oh_mean for p in steady]
+        lows = [p.oh_lo if p.oh_lo is not None else p.oh_mean for p in steady]
+        top = max(tops + [p.oh_mean for p in means] + [1.0])
+        bottom = min(lows + [1.0])
+        span = max(top - bottom, 0.05)
+        ax_oh.set_ylim(min(1.0, bottom) - 0.05 * span, top + 0.18 * span)
+        for xi in no_overhead:
+            ax_oh.text(xi, 0.0, " none", rotation=90, ha="center", va="bottom", fontsize=7,
+                       color=MISSING_COLOR, transform=ax_oh.get_xaxis_transform())
+    else:
+        _overhead_axis(ax_oh, [], [], [])  # "no successful runs"
+    ax_rate.set_title("success rate (Wilson 95%)", fontsize=10)
+    ax_oh.set_title(f"overhead of successful runs ({interval})", fontsize=10)
+    for ax in (ax_rate, ax_oh):
+        ax.set_xticks(range(n))
+        ax.set_xticklabels(list(x_labels), fontsize=8, rotation=30 if n > 8 else 0)
+        ax.set_xlabel(x_title)
+        ax.set_xlim(-0.6, n - 0.4)
+        ax.grid(axis="y", color="#e5e5e5", zorder=0)
+        ax.set_axisbelow(True)
+        if fixed_index is not None and 0 <= fixed_index < n:
+            ax.get_xticklabels()[fixed_index].set_fontweight("bold")
+
+
+def _panel_legend(ax_legend, groups: Sequence[tuple], hue_title: Optional[str],
+                  fixed: bool, medians: bool, interval: str, hatched: bool = False) -> None:
+    if len(groups) > 1:
+        handles = [Patch(color=HUE_COLORS[g % len(HUE_COLORS)], label=str(label))
+                   for g, (label, _) in enumerate(groups)]
+    else:
+        handles = [Patch(color=BAR_COLOR, label="varied value")]
+        if fixed:
+            handles.append(Patch(color=FIXED_COLOR, label="fixed value"))
+    handles.append(Line2D([], [], color="black", marker="_", markersize=8, linewidth=1,
+                          label="95% interval"))
+    if medians:
+        handles.append(Line2D([], [], linestyle="none", marker="D", markersize=4,
+                              color="#f2b134", markeredgecolor="black", label="median overhead"))
+    if hatched:
+        handles.append(Patch(facecolor="white", edgecolor="#333333", hatch="///",
+                             label="fewer runs than asked"))
+    ax_legend.legend(handles=handles, loc="center", ncol=min(len(handles), 6), fontsize=8,
+                     frameon=False, title=hue_title if len(groups) > 1 else None,
+                     title_fontsize=8)
+
+
+def sweep_figure(facets: Sequence[tuple], x_title: str, path: Path,
+                 hue_title: Optional[str] = None, interval: str = "t 95%",
+                 runs_per_point: Optional[int] = None) -> Path:
+    """Any sweep's figure: one row of the two panels per facet. `facets`: (title or None,
+    x labels, groups as draw_sweep_panels takes them, index of the fixed x value or None); the
+    groups' labels are the values of `hue_title`'s axis, the same in every facet."""
+    rows = max(len(facets), 1)
+    fig = _new_figure(10, 3.6 * rows + 0.55)
+    grid_spec = fig.add_gridspec(rows + 1, 2, height_ratios=[14] * rows + [1.4])
+    medians = False
+    for r, (title, labels, groups, fixed) in enumerate(facets):
+        ax_rate, ax_oh = fig.add_subplot(grid_spec[r, 0]), fig.add_subplot(grid_spec[r, 1])
+        draw_sweep_panels(ax_rate, ax_oh, labels, groups, x_title, fixed, interval,
+                          runs_per_point)
+        if title:
+            ax_rate.set_title(f"{title}: success rate (Wilson 95%)", fontsize=10)
+            ax_oh.set_title(f"{title}: overhead ({interval})", fontsize=10)
+        medians = medians or any(p is not None and p.oh_median is not None
+                                 for _, pts in groups for p in pts)
+    ax_legend = fig.add_subplot(grid_spec[rows, :])
+    ax_legend.axis("off")
+    first = facets[0] if facets else (None, [], [], None)
+    hatched = runs_per_point is not None and any(
+        p is not None and p.runs < runs_per_point
+        for _, _, groups, _ in facets for _, pts in groups for p in pts)
+    _panel_legend(ax_legend, first[2], hue_title, first[3] is not None, medians, interval,
+                  hatched)
     return _save(fig, path)
 
 

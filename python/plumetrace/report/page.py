@@ -81,6 +81,7 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: now
 td.mono, code { font-family: "SFMono-Regular", Consolas, "Liberation Mono", monospace;
                 font-size: 0.92em; }
 tr.fixed td { background: #eef4fb; font-weight: 600; }
+tr.incomplete td { color: #a33; }
 td.holds { background: #c8e6c9; } td.fails { background: #ffcdd2; }
 td.unclear { background: #ffe0a3; } td.other { background: #e0e0e0; }
 td.verdict { font-weight: 600; white-space: nowrap; }

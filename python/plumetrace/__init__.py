@@ -17,8 +17,8 @@ Submodules: ``plumetrace.controllers`` (write your own controller), ``plumetrace
 ``plumetrace.report`` (the reproduction report, ``python3 -m plumetrace.report OUT_DIR``).
 """
 
-__all__ = ["ConfigError", "MAX_THREADS", "Scenario", "SweepRows", "algorithms", "result_fields",
-           "run", "sweep", "__version__"]
+__all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning", "SweepRows",
+           "algorithms", "register_controller", "result_fields", "run", "sweep", "__version__"]
 
 
 def __getattr__(name):

@@ -37,7 +37,7 @@ void ScenarioOptions::add_to(CLI::App& cmd, bool with_algorithm) {
   }
 }
 
-Scenario ScenarioOptions::load() const {
+Scenario ScenarioOptions::load(bool warn) const {
   std::vector<Setting> overrides;
   if (!algorithm.empty()) {
     overrides.push_back(
@@ -45,7 +45,7 @@ Scenario ScenarioOptions::load() const {
   }
   for (const auto& s : sets) overrides.push_back(parse_override(s));
   Scenario scenario = load_scenario(path, overrides);
-  print_warnings(scenario);
+  if (warn) print_warnings(scenario);
   return scenario;
 }
 

@@ -18,9 +18,9 @@ struct ScenarioOptions {
 
   /// Registers them on `cmd` (--algorithm only `with_algorithm`).
   void add_to(CLI::App& cmd, bool with_algorithm);
-  /// The scenario they say: the file, then --algorithm, then each --set in order; its warnings
-  /// (scenario_warnings) go to stderr.
-  Scenario load() const;
+  /// The scenario they say: the file, then --algorithm, then each --set in order; with `warn`,
+  /// its warnings (scenario_warnings) go to stderr.
+  Scenario load(bool warn = true) const;
 };
 
 /// Prints each of the scenario's warnings (scenario_warnings) on stderr, after `where`.

@@ -185,6 +185,8 @@ def test_no_controller_is_registered_while_runs_are_in_flight(tmp_path):
     with pytest.raises(RuntimeError, match="runs are in progress"):
         pt.run(algorithm="registers", trace=False)
     assert "late" not in pt.algorithms()
+    # once the run is over, registering works again (and leaves a harmless "registers")
+    pt.register_controller("registers", _zigzag_class([]))
 
 
 def test_a_controller_sees_measurements_only():

@@ -1,6 +1,7 @@
 #include "options.hpp"
 
 #include <charconv>
+#include <cstdio>
 
 #include "lochmatter2008/study.hpp"
 #include "plumetrace/agent/controllers.hpp"
@@ -36,14 +37,43 @@ void ScenarioOptions::add_to(CLI::App& cmd, bool with_algorithm) {
   }
 }
 
-Scenario ScenarioOptions::load() const {
+Scenario ScenarioOptions::load(bool warn) const {
   std::vector<Setting> overrides;
   if (!algorithm.empty()) {
     overrides.push_back(
         {"controller.algorithm", algorithm, true, "--algorithm", Layer::kCommandLine});
   }
   for (const auto& s : sets) overrides.push_back(parse_override(s));
-  return load_scenario(path, overrides);
+  Scenario scenario = load_scenario(path, overrides);
+  if (warn) print_warnings(scenario);
+  return scenario;
+}
+
+void print_warnings(const Scenario& scenario, const std::string& where) {
+  for (const std::string& w : scenario_warnings(scenario)) {
+    std::fprintf(stderr, "plumetrace: warning: %s%s\n", where.c_str(), w.c_str());
+  }
+}
+
+void print_sweep_warnings(const std::vector<ExpandedSweep>& sweeps) {
+  // why: a grid may have thousands of points; a few show what to change
+  constexpr int kShown = 3;
+  int warned = 0;
+  for (const ExpandedSweep& sweep : sweeps) {
+    for (const SweepPoint& p : sweep.points) {
+      if (scenario_warnings(p.scenario).empty()) continue;
+      if (++warned > kShown) continue;
+      std::string where = "sweep " + sweep.def.name + ", point " + std::to_string(p.index);
+      for (std::size_t a = 0; a < p.values.size(); ++a) {
+        where += (a ? ", " : " (") + sweep.def.axes[a].key + " = " + format_value(p.values[a]);
+      }
+      print_warnings(p.scenario, where + (p.values.empty() ? ": " : "): "));
+    }
+  }
+  if (warned > kShown) {
+    std::fprintf(stderr, "plumetrace: warning: %d more points of the sweep warn likewise\n",
+                 warned - kShown);
+  }
 }
 
 void CampaignFlags::add_to(CLI::App& sub) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/sim/scenario.hpp"
 
 namespace plumetrace::cli {
@@ -17,9 +18,17 @@ struct ScenarioOptions {
 
   /// Registers them on `cmd` (--algorithm only `with_algorithm`).
   void add_to(CLI::App& cmd, bool with_algorithm);
-  /// The scenario they say: the file, then --algorithm, then each --set in order.
-  Scenario load() const;
+  /// The scenario they say: the file, then --algorithm, then each --set in order; with `warn`,
+  /// its warnings (scenario_warnings) go to stderr.
+  Scenario load(bool warn = true) const;
 };
+
+/// Prints each of the scenario's warnings (scenario_warnings) on stderr, after `where`.
+void print_warnings(const Scenario& scenario, const std::string& where = "");
+
+/// Prints the warnings of the points of `sweeps` on stderr, each with its point's axis values;
+/// at most a few points, then how many more warn.
+void print_sweep_warnings(const std::vector<ExpandedSweep>& sweeps);
 
 /// The flags `reproduce` and `sensitivity` share.
 struct CampaignFlags {

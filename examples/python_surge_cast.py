@@ -1,8 +1,9 @@
 """Surge-cast (Lochmatter & Martinoli 2008) written in Python, run against the built-in one.
 
 Run: PYTHONPATH=build/python /usr/bin/python3 examples/python_surge_cast.py
-It gives exactly the built-in surge-cast's results for the same seeds (tested in
-python/tests/test_controllers.py).
+It is registered as "py-surge-cast" with keys of its own, py_surge_cast.d_cast and
+py_surge_cast.d_lost (the built-in's defaults), and gives exactly the built-in surge-cast's
+results for the same seeds and values (tested in python/tests/test_controllers.py).
 """
 
 import math
@@ -15,10 +16,15 @@ class SurgeCast(Controller):
     """Straight upwind in the plume; once lost, cast d_cast toward the guessed side, then
     2 d_cast the other way, then give up."""
 
-    def __init__(self, scenario, rng):
-        params = scenario["surge_cast"]
+    params = {
+        "d_cast": pt.Param(0.27, min=0.0, min_open=True, help="cast length (m)"),
+        "d_lost": pt.Param(0.614, min=0.0, min_open=True,
+                           help="path length without odor before the plume is lost (m)"),
+    }
+
+    def __init__(self, params, rng):
+        super().__init__(params, rng)
         self.d_cast, self.d_lost = params["d_cast"], params["d_lost"]
-        self.rng = rng
         self.state, self.losses = "surge", 0
         self.started = False
         self.heading = self.upwind = 0.0
@@ -55,10 +61,16 @@ class SurgeCast(Controller):
         return self.go(self.upwind - self.side * math.pi / 2.0)
 
 
+# one line: "py-surge-cast" becomes a value of controller.algorithm and its keys config keys
+pt.register_controller("py-surge-cast", SurgeCast)
+
+
 def main():
     for trial in range(3):
-        mine = pt.run(algorithm="surge-cast", seed=7, trial=trial, controller=SurgeCast, trace=False)
-        builtin = pt.run(algorithm="surge-cast", seed=7, trial=trial, trace=False)
+        mine = pt.run(algorithm="py-surge-cast", seed=7, trial=trial, trace=False,
+                      py_surge_cast__d_cast=0.4)
+        builtin = pt.run(algorithm="surge-cast", seed=7, trial=trial, trace=False,
+                         surge_cast__d_cast=0.4)
         same = all(mine[k] == builtin[k] for k in ("outcome", "time_s", "d_t", "d_u", "losses"))
         print(f"trial {trial}: {mine['outcome']:8s} d_t {mine['d_t']:.3f} m, "
               f"identical to the built-in: {same}")

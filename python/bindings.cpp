@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -277,6 +278,234 @@ class PyController : public pt::Controller {
   int losses_ = 0;
 };
 
+// Runs in flight whose threads read the controller registry: a Python controller is registered
+// only while there are none. why: registering grows the registry, which those threads read
+// without a lock (agent/controllers.hpp: add to it only before runs start)
+std::atomic<int> g_registry_readers{0};
+
+// holds g_registry_readers up while it lives
+struct RegistryReader {
+  RegistryReader() { ++g_registry_readers; }
+  ~RegistryReader() { --g_registry_readers; }
+  RegistryReader(const RegistryReader&) = delete;
+  RegistryReader& operator=(const RegistryReader&) = delete;
+};
+
+// the value of a choice key of a Python controller: the index of its name
+enum class ScriptedChoice : int {};
+
+// One config key a Python controller declares (plumetrace.Param).
+struct ScriptedKey {
+  enum class Kind { kNumber, kInteger, kChoice };
+  std::string name;
+  std::string help;
+  Kind kind = Kind::kNumber;
+  pt::NumberSpec number;
+  pt::IntegerSpec integer{INT_MIN, INT_MAX};
+  std::vector<std::string> names;  // a choice's values
+  pt::Choices choices;             // views of `names`, made once they are final
+};
+
+// What a Python controller registered under a name is: its keys and its factory.
+struct ScriptedSpec {
+  std::vector<ScriptedKey> keys;
+  // f(values: dict, rng) -> controller. why: a reference never given back; the registry keeps
+  // it to the end of the process, after the interpreter is gone
+  PyObject* factory = nullptr;
+};
+
+// The params of a Python controller: a value per declared key, visited as config keys of its
+// table like a C++ params struct's.
+struct ScriptedParams {
+  std::shared_ptr<const ScriptedSpec> spec;
+  std::vector<double> numbers;          // by key; used for number keys
+  std::vector<int> integers;            // by key; used for integer keys
+  std::vector<ScriptedChoice> choices;  // by key; used for choice keys
+
+  template <class V>
+  void fields(V& v) {
+    for (std::size_t i = 0; i < spec->keys.size(); ++i) {
+      const ScriptedKey& k = spec->keys[i];
+      switch (k.kind) {
+        case ScriptedKey::Kind::kNumber:
+          v(k.name, numbers[i], k.help, k.number);
+          break;
+        case ScriptedKey::Kind::kInteger:
+          v(k.name, integers[i], k.help, k.integer);
+          break;
+        case ScriptedKey::Kind::kChoice:
+          v(k.name, choices[i], k.help, k.choices);
+          break;
+      }
+    }
+  }
+};
+
+// the registry's factory of every Python controller: its Python factory called with the run's
+// values of its keys (a dict) and its controller stream
+std::unique_ptr<pt::Controller> make_scripted(const pt::AnyParams& held, pt::Rng rng) {
+  const ScriptedParams& params = held.get<ScriptedParams>();
+  py::gil_scoped_acquire gil;
+  py::dict values;
+  for (std::size_t i = 0; i < params.spec->keys.size(); ++i) {
+    const ScriptedKey& k = params.spec->keys[i];
+    const py::str name(k.name);
+    switch (k.kind) {
+      case ScriptedKey::Kind::kNumber:
+        values[name] = params.numbers[i];
+        break;
+      case ScriptedKey::Kind::kInteger:
+        values[name] = params.integers[i];
+        break;
+      case ScriptedKey::Kind::kChoice:
+        values[name] = k.names.at(static_cast<std::size_t>(params.choices[i]));
+        break;
+    }
+  }
+  py::object impl = py::reinterpret_borrow<py::object>(params.spec->factory)(values, rng);
+  if (!py::hasattr(impl, "step")) {
+    throw py::type_error(
+        "the registered controller's factory must return an object with a "
+        "step(observation, wind) method, got " +
+        type_name(impl));
+  }
+  return std::make_unique<PyController>(std::move(impl), nullptr);
+}
+
+// a name of letters, digits and `extra`, not empty
+bool plain_name(const std::string& name, std::string_view extra) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [&](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || extra.find(c) != std::string_view::npos;
+  });
+}
+
+// one declared key from its Python description (plumetrace.Param._spec), checked
+ScriptedKey scripted_key(const std::string& controller, const py::dict& d, double& number,
+                         int& integer, ScriptedChoice& choice) {
+  ScriptedKey k;
+  k.name = text_of(d["name"], "a key name");
+  const std::string key = controller + "." + k.name;
+  if (!plain_name(k.name, "_")) {
+    throw pt::ConfigError(key + ": a key's name is letters, digits and '_'");
+  }
+  k.help = text_of(d["help"], key + ": help");
+  const std::string kind = text_of(d["kind"], key + ": kind");
+  const py::object lo = d["min"], hi = d["max"];
+  if (kind == "number") {
+    k.kind = ScriptedKey::Kind::kNumber;
+    k.number.min = lo.is_none() ? -INFINITY : lo.cast<double>();
+    k.number.max = hi.is_none() ? INFINITY : hi.cast<double>();
+    k.number.min_open = d["min_open"].cast<bool>();
+    k.number.max_open = d["max_open"].cast<bool>();
+    number = d["default"].cast<double>();
+    const pt::NumberSpec& s = k.number;
+    const bool ok = std::isfinite(number) && (s.min_open ? number > s.min : number >= s.min) &&
+                    (s.max_open ? number < s.max : number <= s.max);
+    if (!ok) {
+      throw pt::ConfigError(key + ": the default " + pt::format_number(number) +
+                            " is not a finite number within the declared range");
+    }
+  } else if (kind == "integer") {
+    k.kind = ScriptedKey::Kind::kInteger;
+    const auto bound = [&](const py::object& v, int none) {
+      if (v.is_none()) return none;
+      const long long b = v.cast<long long>();
+      if (b < INT_MIN || b > INT_MAX) {
+        throw pt::ConfigError(key + ": an integer key's bounds are within +-2^31");
+      }
+      return static_cast<int>(b);
+    };
+    k.integer = {bound(lo, INT_MIN), bound(hi, INT_MAX)};
+    const long long v = d["default"].cast<long long>();
+    if (v < k.integer.min || v > k.integer.max) {
+      throw pt::ConfigError(key + ": the default " + std::to_string(v) +
+                            " is not within the declared range");
+    }
+    integer = static_cast<int>(v);
+  } else {
+    k.kind = ScriptedKey::Kind::kChoice;
+    for (const py::handle n : py::reinterpret_borrow<py::list>(d["choices"])) {
+      const std::string name = text_of(n, key + ": a choice");
+      if (name.empty() || std::count(k.names.begin(), k.names.end(), name) > 0) {
+        throw pt::ConfigError(key + ": choices are distinct, non-empty names");
+      }
+      k.names.push_back(name);
+    }
+    const std::string value = text_of(d["default"], key + ": default");
+    const auto at = std::find(k.names.begin(), k.names.end(), value);
+    if (at == k.names.end()) {
+      throw pt::ConfigError(key + ": the default '" + value + "' is not one of the choices");
+    }
+    choice = static_cast<ScriptedChoice>(at - k.names.begin());
+  }
+  return k;
+}
+
+// Registers (or registers again) a controller written in Python under `name`, with the keys
+// `keys` declare (plumetrace.register_controller).
+void register_controller(const std::string& name, const py::list& keys, py::object factory) {
+  if (!PyCallable_Check(factory.ptr())) {
+    throw py::type_error("register_controller: the factory must be callable, got " +
+                         type_name(factory));
+  }
+  if (!plain_name(name, "_-") || name.front() == '-') {
+    throw pt::ConfigError("controller name '" + name +
+                          "': letters, digits, '_' and '-' (not first), as in 'zigzag'");
+  }
+  pt::ControllerRegistry& registry = pt::controller_registry();
+  // a table of the scenario's own ("robot", "controller"), not of a controller
+  const std::string table = pt::ControllerRegistry::table_of(name);
+  bool scenario_table = false;
+  pt::for_each_value(pt::Scenario{}, [&](const pt::FieldValue& f) {
+    scenario_table = scenario_table || f.table == table;
+  });
+  for (const auto& e : registry.entries()) scenario_table = scenario_table && e.table != table;
+  if (scenario_table) {
+    throw pt::ConfigError("controller name '" + name + "': '" + table +
+                          "' is a table of the scenario already");
+  }
+  auto spec = std::make_shared<ScriptedSpec>();
+  ScriptedParams defaults;
+  for (const py::handle item : keys) {
+    double number = 0.0;
+    int integer = 0;
+    ScriptedChoice choice{};
+    spec->keys.push_back(
+        scripted_key(name, py::reinterpret_borrow<py::dict>(item), number, integer, choice));
+    defaults.numbers.push_back(number);
+    defaults.integers.push_back(integer);
+    defaults.choices.push_back(choice);
+  }
+  for (std::size_t i = 0; i < spec->keys.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (spec->keys[i].name == spec->keys[j].name) {
+        throw pt::ConfigError(name + "." + spec->keys[i].name + ": declared twice");
+      }
+    }
+    for (const std::string& n : spec->keys[i].names) spec->keys[i].choices.emplace_back(n);
+  }
+  const std::size_t existing = registry.find(name);
+  if (existing < registry.size() && !registry[existing].defaults.holds<ScriptedParams>()) {
+    throw pt::ConfigError("controller name '" + name +
+                          "': taken by a controller of the library or of this program's C++");
+  }
+  if (g_registry_readers.load() > 0) {
+    throw std::runtime_error("register_controller('" + name +
+                             "'): runs are in progress; register controllers before running");
+  }
+  spec->factory = factory.release().ptr();
+  defaults.spec = std::move(spec);
+  try {
+    if (existing < registry.size()) {
+      registry.replace(existing, pt::AnyParams(std::move(defaults)), &make_scripted);
+    } else {
+      registry.add(name, pt::AnyParams(std::move(defaults)), &make_scripted);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw pt::ConfigError("controller name '" + name + "': " + e.what());
+  }
+}
+
 // A controller factory calling the Python `factory(scenario_dict, rng)` for each run; empty
 // for None (the scenario's built-in algorithm). `stop` as for PyController.
 pt::ControllerFactory python_factory(py::object factory, const std::atomic<bool>* stop = nullptr) {
@@ -324,6 +553,7 @@ py::dict run(const std::optional<std::string>& path, const py::list& overrides, 
   pt::TraceRecorder recorder(recorded, snapshot_interval, scenario.sim.dt);
   pt::RunResult result;
   {
+    const RegistryReader reading;
     py::gil_scoped_release release;
     result = pt::run_once(scenario, seed, trial,
                           trace || view ? pt::StepObserver(std::ref(recorder)) : nullptr, factory);
@@ -552,6 +782,7 @@ py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int 
   std::vector<pt::RunRow> rows;
   std::exception_ptr failure;
   {
+    const RegistryReader reading;
     py::gil_scoped_release release;
     try {
       pt::run_tasks(sweeps, tasks, options, [&rows](const std::vector<pt::RunRow>& batch) {
@@ -691,6 +922,7 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
   options.on_progress = watch.on_progress();
   pt::CalibrationResult result;
   {
+    const RegistryReader reading;
     py::gil_scoped_release release;
     result = pt::evaluate_sets(options);
   }
@@ -781,6 +1013,16 @@ PYBIND11_MODULE(_core, m) {
         return fields;
       },
       "the per-run result fields in column order: name, SI unit (\"\" for none), nullable");
+  m.def("register_controller", &register_controller, py::arg("name"), py::arg("keys"),
+        py::arg("factory"),
+        "registers a Python controller: its keys (dicts of plumetrace.Param._spec) and its "
+        "factory f(values: dict, rng)");
+  m.def(
+      "scenario_warnings",
+      [](const std::optional<std::string>& path, const py::list& overrides) {
+        return pt::scenario_warnings(scenario_of(path, overrides));
+      },
+      "why the resolved scenario is unlikely to be tracked (sim/scenario.hpp)");
   m.def("algorithms", [] {
     std::vector<std::string> names;
     for (const pt::Algorithm a : pt::all_algorithms()) names.emplace_back(pt::algorithm_name(a));

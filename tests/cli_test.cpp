@@ -77,6 +77,40 @@ TEST(Cli, PrintedConfigRunsTheSameAsTheOptionsThatMadeIt) {
   EXPECT_EQ(a.out, b.out);
 }
 
+TEST(Cli, ScenariosThatPutTheRobotOutsideOdorWarnNamingTheKeys) {
+  // coherent: nothing on stderr, the derived ring and warm-up in the resolved config
+  const Output paper = cli("config");
+  EXPECT_EQ(paper.err, "");
+  const Output slow = cli("config --set wind.vx=0.5");
+  ASSERT_EQ(slow.code, 0) << slow.err;
+  EXPECT_EQ(slow.err, "");
+  EXPECT_NE(slow.out.find("\ncapacity = 2880  #"), std::string::npos) << slow.out;
+  EXPECT_NE(slow.out.find("\nwarmup = 36.0  #"), std::string::npos) << slow.out;
+  // incoherent: config and run still work, and say which keys to change
+  const Output ring = cli("config --set wind.vx=0.5 --set plume.capacity=1600");
+  EXPECT_EQ(ring.code, 0);
+  EXPECT_EQ(ring.err.rfind("plumetrace: warning: ", 0), 0u) << ring.err;
+  EXPECT_NE(ring.err.find("plume.capacity"), std::string::npos) << ring.err;
+  const Output aside =
+      cli("run --set source.y=1.0 --set robot.start_y=0 --set supervisor.timeout=2 --json");
+  EXPECT_EQ(aside.code, 0);
+  EXPECT_NE(aside.err.find("plumetrace: warning: the robot starts outside odor"), std::string::npos)
+      << aside.err;
+  EXPECT_NE(aside.err.find("robot.start_y"), std::string::npos) << aside.err;
+  EXPECT_EQ(json::parse(aside.out)["outcome"], "timeout");
+  // a sweep names the point
+  const std::string sweep = testing::temp_path("warn", ".toml");
+  std::ofstream(sweep) << "name = \"warn\"\nruns = 1\n[set]\nsupervisor.timeout = 1.0\n"
+                          "sim.warmup = 20.0\n[[axis]]\nkey = \"wind.vx\"\nvalues = [0.9, 0.5]\n";
+  const Output swept =
+      cli("sweep " + sweep + " --out " + testing::temp_path("warn", "") + " --threads 1 --quiet");
+  EXPECT_EQ(swept.code, 0) << swept.err;
+  EXPECT_NE(swept.err.find("sweep warn, point 1 (wind.vx = 0.5): the plume cannot reach"),
+            std::string::npos)
+      << swept.err;
+  EXPECT_EQ(swept.err.find("point 0"), std::string::npos) << swept.err;
+}
+
 TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
   struct Case {
     std::string args, expect;
@@ -85,7 +119,7 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set sim.dt=0 --json", "sim.dt"},
       {"run --set plume.nonsense=1", "unknown config key 'plume.nonsense'"},
       {"run --set plume.capacity=0", "plume.capacity"},
-      {"run --algorithm zigzag", "controller.algorithm"},
+      {"run --algorithm no-such-algorithm", "controller.algorithm"},
       {"run --set plume.preset=foo", "plume.preset"},
       {"run --set robot.wheel_speed=-0.1", "robot.wheel_speed"},
       {"run --set odor.threshold=0", "odor.threshold"},
@@ -322,6 +356,17 @@ TEST(Study, TheMeanderStudyRunsAndDrawsItsReport) {
     EXPECT_TRUE(std::filesystem::exists(out + "/figures/meander_" + sweep + ".png")) << sweep;
   }
 }
+
+#ifdef PLUMETRACE_WITH_ZIGZAG
+// this build runs the tests of this file against examples/zigzag, the command with one more
+// controller: its keys are config keys like the built-ins'
+TEST(Cli, TheCommandUnderTestHasZigzagAndItsKeys) {
+  const Output config = cli("config --algorithm zigzag --set zigzag.leg=0.8");
+  ASSERT_EQ(config.code, 0) << config.err;
+  EXPECT_NE(config.out.find("algorithm = \"zigzag\""), std::string::npos) << config.out;
+  EXPECT_NE(config.out.find("[zigzag]\nleg = 0.8  #"), std::string::npos) << config.out;
+}
+#endif
 
 }  // namespace
 }  // namespace plumetrace

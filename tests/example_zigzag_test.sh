@@ -64,6 +64,22 @@ TOML
   fail "sweep exited $?: $(cat "$tmp/sweep.log")"
 grep -q "zigzag.leg" "$tmp/out/summary.csv" 2>/dev/null ||
   grep -rq "zigzag.leg" "$tmp/out" || fail "the sweep's output does not name zigzag.leg"
+# each value is a point of its own: its column in runs.csv, a config hash of its own, and the
+# store's resolved config of the point holds the value
+/usr/bin/python3 - "$tmp/out" <<'PY' || fail "the points of zigzag.leg are not stored apart"
+import csv, sqlite3, sys
+out = sys.argv[1]
+rows = list(csv.DictReader(open(out + "/runs.csv")))
+legs = sorted({r["zigzag.leg"] for r in rows})
+hashes = {r["zigzag.leg"]: {x["config_hash"] for x in rows if x["zigzag.leg"] == r["zigzag.leg"]}
+          for r in rows}
+assert legs == ["0.5", "1.5"], legs
+assert all(len(h) == 1 for h in hashes.values()) and len(set.union(*hashes.values())) == 2, hashes
+points = sqlite3.connect(out + "/results.sqlite").execute(
+    "SELECT axis_values, config FROM points ORDER BY point").fetchall()
+assert [p[0] for p in points] == ["zigzag.leg = 0.5", "zigzag.leg = 1.5"], points
+assert "[zigzag]\nleg = 0.5  #" in points[0][1] and "[zigzag]\nleg = 1.5  #" in points[1][1]
+PY
 
 [ "$failed" -eq 0 ] && echo "example_zigzag: ok"
 exit "$failed"

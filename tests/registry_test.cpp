@@ -113,6 +113,29 @@ TEST(Registry, MakesAModelFromItsParamsAndTheFamilyArguments) {
   EXPECT_THROW(r[0].make(AnyParams(GadgetParams{}), 5), std::logic_error);
 }
 
+// made from any params struct the entry holds: a model whose keys are only known at run time
+std::unique_ptr<Thing> make_sized_gadget(const AnyParams& p, int) {
+  return std::make_unique<Widget>(p.get<WidgetParams>(), -1);
+}
+
+TEST(Registry, AddsAndReplacesAnEntryMadeAtRunTime) {
+  ThingRegistry r;
+  r.add<Gadget, GadgetParams>("gadget");
+  WidgetParams defaults;
+  defaults.count = 4;
+  EXPECT_EQ(r.add("sized-gadget", AnyParams(defaults), &make_sized_gadget), 1u);
+  EXPECT_EQ(r[1].table, "sized_gadget");
+  EXPECT_EQ(r[1].make(r[1].defaults, 0)->what(), "widget 4 -1");
+  EXPECT_THROW(r.add("sized_gadget", AnyParams(defaults), &make_sized_gadget),
+               std::invalid_argument);
+  // replaced: other defaults and factory under the same name and table, in the same place
+  defaults.count = 6;
+  r.replace(1, AnyParams(defaults), &make_sized_gadget);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r.find("sized-gadget"), 1u);
+  EXPECT_EQ(r[1].make(r[1].defaults, 0)->what(), "widget 6 -1");
+}
+
 TEST(AnyParams, CopiesAreDeep) {
   AnyParams a(WidgetParams{});
   AnyParams b = a;

@@ -2,15 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/world.hpp"
+#include "support/algorithms.hpp"
 #include "support/temp_path.hpp"
 
 namespace plumetrace {
@@ -205,8 +209,9 @@ TEST(Scenario, InvalidValuesNameTheKeyAndTheAllowedRange) {
       {"wind_sensor.sigma_a=-0.1", "wind_sensor.sigma_a: must be a number >= 0"},
       {"casting.beta_deg=90", "casting.beta_deg: must be a number >= 0 and < 90"},
       {"sim.dt=abc", "sim.dt: must be a number > 0 (got 'abc')"},
-      {"controller.algorithm=zigzag",
-       "controller.algorithm: must be one of 'casting', 'surge-spiral', 'surge-cast'"},
+      {std::string("controller.algorithm=") + testing::kUnregisteredAlgorithm,
+       "controller.algorithm: must be one of " + testing::algorithm_choices() + " (got '" +
+           testing::kUnregisteredAlgorithm + "')"},
       {"plume.preset=foo", "plume.preset: must be one of 'lochmatter2008', 'paper-literal'"},
       {"plume.noise_mode=brownian", "plume.noise_mode: must be one of 'velocity'"},
       {"source.solid_radius=-0.1", "source.solid_radius: must be a number >= 0 and <= 1"},
@@ -287,6 +292,187 @@ TEST(Scenario, FileErrorsNameTheFile) {
   std::fclose(f);
   const std::string syntax = config_error([&] { load_scenario(path, {}); });
   EXPECT_NE(syntax.find(path + ":1:"), std::string::npos) << syntax;
+}
+
+// Derived keys: ring, warm-up and start follow the arena, the wind and the source
+// (docs/scenarios.md)
+
+Scenario with(std::initializer_list<const char*> overrides) {
+  std::vector<Setting> settings;
+  for (const char* o : overrides) settings.push_back(parse_override(o));
+  return build_scenario(settings);
+}
+
+// every warning of the scenario, joined, or "" when there is none
+std::string warnings_of(const Scenario& s) {
+  std::string out;
+  for (const std::string& w : scenario_warnings(s)) out += w + "\n";
+  return out;
+}
+
+TEST(DerivedKeys, ThePapersSetupsKeepThePluginsRingWarmUpAndStart) {
+  const std::string study = std::string(PLUMETRACE_SOURCE_DIR) + "/studies/lochmatter2008";
+  std::vector<std::pair<std::string, Scenario>> setups = {{"built-in", Scenario{}}};
+  for (const char* f :
+       {"lochmatter2008.toml", "paper-literal.toml", "meander-weak.toml", "meander-strong.toml"}) {
+    setups.emplace_back(f, load_scenario(kScenarios + f, {}));
+  }
+  // every point of the nine sets under every reading of the study
+  std::vector<std::string> readings = preset_names(study + "/presets");
+  readings.push_back(kDefaultReading);
+  for (const std::string& name : readings) {
+    const Reading reading = read_reading(study + "/presets", name);
+    for (const char set : std::string("ABCDEFGHI")) {
+      const std::string file = study + "/sets/" + set + ".toml";
+      for (const SweepPoint& p : expand_sweep(read_sweep_file(file), reading.settings).points) {
+        setups.emplace_back(name + " " + set + std::to_string(p.index), p.scenario);
+      }
+    }
+  }
+  ASSERT_GT(setups.size(), 200u);
+  for (const auto& [name, s] : setups) {
+    EXPECT_EQ(crossing_ratio(s), 1.0) << name;
+    EXPECT_EQ(s.plume.capacity, 1600) << name;
+    EXPECT_EQ(s.sim.warmup, 20.0) << name;
+    EXPECT_EQ(s.robot.start.x, 15.5) << name;
+    EXPECT_EQ(s.robot.start.y, 0.0) << name;
+    EXPECT_EQ(warnings_of(s), "") << name;
+  }
+  // the default scenario's resolved config, and so its hash, is what it was before derivation
+  Scenario derived;
+  derive_scenario(derived);
+  EXPECT_EQ(scenario_to_toml(derived), scenario_to_toml(Scenario{}));
+}
+
+TEST(DerivedKeys, RingAndWarmUpGrowWithTheTimeTheWindTakesToCrossTheArena) {
+  // 16 m at 0.5 m/s takes 1.8 times as long as at the reference 0.9 m/s
+  const Scenario slow = with({"wind.vx=0.5"});
+  EXPECT_DOUBLE_EQ(crossing_ratio(slow), 1.8);
+  EXPECT_EQ(slow.plume.capacity, 2880);  // ceil(100 /s * 16 s * 1.8)
+  EXPECT_DOUBLE_EQ(slow.sim.warmup, 36.0);
+  // the plume reaches as far as the paper's: 14.4 m downwind (0.5 m/s * 28.8 s)
+  EXPECT_DOUBLE_EQ(slow.wind.velocity.x * slow.plume.capacity / slow.plume.release_rate, 14.4);
+  // a longer arena at the reference wind, and the release rate
+  const Scenario longer = with({"arena.x_max=32", "robot.start_x=30"});
+  EXPECT_EQ(longer.plume.capacity, 3200);
+  EXPECT_DOUBLE_EQ(longer.sim.warmup, 40.0);
+  EXPECT_EQ(with({"wind.vx=0.5", "plume.release_rate=50"}).plume.capacity, 1440);
+  // a faster wind keeps the paper's values (never less)
+  const Scenario fast = with({"wind.vx=2"});
+  EXPECT_EQ(fast.plume.capacity, 1600);
+  EXPECT_EQ(fast.sim.warmup, 20.0);
+}
+
+TEST(DerivedKeys, ThePlumeAtReleaseReachesAsFarAsTheRingKeepsIt) {
+  // analytic: the oldest filament is wind * span downwind of the source, span = capacity / rate
+  for (const char* vx : {"wind.vx=0.3", "wind.vx=0.5", "wind.vx=0.7"}) {
+    const Scenario s = with({vx});
+    Environment env = make_environment(s, 11, 0);
+    warm_up(s, env);
+    const FilamentSpans f = env.odor->snapshot().filaments;
+    ASSERT_EQ(f.size(), static_cast<std::size_t>(s.plume.capacity)) << vx << ": the ring is full";
+    const double far = *std::max_element(f.x.begin(), f.x.end());
+    const double span = s.plume.capacity / s.plume.release_rate;
+    const double expected = s.source.center.x + s.wind.velocity.x * span;
+    // within the release ball, a step of wind and 5 standard deviations of the random walk
+    const double walk = walk_stddev(s.plume, s.sim.dt) * std::sqrt(span / s.sim.dt);
+    EXPECT_NEAR(far, expected, s.source.radius + s.wind.velocity.x * s.sim.dt + 5.0 * walk) << vx;
+    EXPECT_GT(far, s.robot.start.x - 0.2) << vx << ": the plume ends near the robot's start";
+  }
+}
+
+TEST(DerivedKeys, TheStartFollowsTheSourceByItsOffset) {
+  const Scenario moved = with({"source.y=1.0"});
+  EXPECT_EQ(moved.robot.start.x, 15.5);
+  EXPECT_EQ(moved.robot.start.y, 1.0);
+  EXPECT_EQ(warnings_of(moved), "");
+  const Scenario offset = with({"robot.start_offset_x=10", "robot.start_offset_y=-0.5"});
+  EXPECT_EQ(offset.robot.start.x, 11.0);
+  EXPECT_EQ(offset.robot.start.y, -0.5);
+  // the offset is an input: the resolved config holds the start it gives, not the offset
+  const std::string toml = scenario_to_toml(offset);
+  EXPECT_NE(toml.find("start_x = 11.0"), std::string::npos) << toml;
+  EXPECT_EQ(toml.find("start_offset"), std::string::npos) << toml;
+  EXPECT_NE(config_error([] { get_field(Scenario{}, "robot.start_offset_x"); }), "");
+  // a start that leaves the arena names the keys that put it there
+  const std::string msg = error_of_override("source.x=3");
+  EXPECT_NE(msg.find("robot.start_x"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("source.x + robot.start_offset_x = 3 + 14.5 = 17.5"), std::string::npos)
+      << msg;
+}
+
+TEST(DerivedKeys, ExplicitValuesOverrideTheDerivationAndTheLastSettingWins) {
+  const Scenario set = with({"wind.vx=0.5", "plume.capacity=1000", "sim.warmup=5"});
+  EXPECT_EQ(set.plume.capacity, 1000);
+  EXPECT_EQ(set.sim.warmup, 5.0);
+  // "auto" derives again, whatever was set before
+  const Scenario again = with({"plume.capacity=1000", "wind.vx=0.5", "plume.capacity=auto"});
+  EXPECT_EQ(again.plume.capacity, 2880);
+  // an absolute start wins over the offset set before it; an offset set after it wins back
+  const Scenario absolute = with({"robot.start_offset_x=5", "robot.start_x=10", "source.y=1"});
+  EXPECT_EQ(absolute.robot.start.x, 10.0);
+  EXPECT_EQ(absolute.robot.start.y, 1.0);  // y still follows the source
+  const Scenario relative = with({"robot.start_x=10", "robot.start_offset_x=5"});
+  EXPECT_EQ(relative.robot.start.x, 6.0);
+  EXPECT_EQ(with({"robot.start_y=0.5", "robot.start_y=auto", "source.y=-1"}).robot.start.y, -1.0);
+  // a resolved config fixes every derived value: read back, it runs the same scenario even
+  // with the wind changed on top of it
+  const Scenario slow = with({"wind.vx=0.5"});
+  const std::string path = testing::temp_path("derived", ".toml");
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(scenario_to_toml(slow).c_str(), f);
+  std::fclose(f);
+  EXPECT_EQ(scenario_to_toml(load_scenario(path, {})), scenario_to_toml(slow));
+  EXPECT_EQ(load_scenario(path, {parse_override("wind.vx=0.3")}).plume.capacity, 2880);
+}
+
+TEST(DerivedKeys, BadValuesAndImpossibleDerivationsNameTheKeys) {
+  EXPECT_NE(error_of_override("sim.warmup=abc").find("sim.warmup: must be a number >= 0 or 'auto'"),
+            std::string::npos);
+  EXPECT_NE(error_of_override("plume.capacity=-3")
+                .find("plume.capacity: must be an integer >= 1 and <= 10000000 or 'auto'"),
+            std::string::npos);
+  EXPECT_NE(error_of_override("robot.start_offset_x=auto").find("robot.start_offset_x: must be"),
+            std::string::npos);
+  // a ring beyond the limit is the largest one, and the short plume is warned about
+  const Scenario crowded = with({"plume.release_rate=1e6"});
+  EXPECT_EQ(crowded.plume.capacity, kMaxCapacity);
+  EXPECT_NE(warnings_of(crowded).find("plume.capacity = 10000000 filaments"), std::string::npos)
+      << warnings_of(crowded);
+  // a crawling wind: the derived warm-up's step limit says it was derived
+  const std::string crawl = error_of_override("wind.vx=1e-5");
+  EXPECT_NE(crawl.find("sim.warmup: must be at most 1e7 steps"), std::string::npos) << crawl;
+  EXPECT_NE(crawl.find("derived from wind.vx = 1e-5 m/s"), std::string::npos) << crawl;
+}
+
+TEST(ScenarioWarnings, NameTheKeysThatPutTheRobotOutsideOdor) {
+  struct Case {
+    std::vector<const char*> set;
+    std::vector<const char*> named;
+  };
+  const Case cases[] = {
+      // the old fixed ring at half the wind: the plume ends 8 m downwind
+      {{"wind.vx=0.5", "plume.capacity=1600"}, {"plume.capacity", "robot.start_offset_x"}},
+      // the old warm-up at half the wind: the front is 10 m downwind at release
+      {{"wind.vx=0.5", "sim.warmup=20"}, {"sim.warmup", "robot.start_offset_x"}},
+      {{"source.y=1.0", "robot.start_y=0"}, {"robot.start_y", "robot.start_offset_y"}},
+      {{"wind.vx=0.9", "wind.vy=0.2"}, {"robot.start_y", "wind.vy"}},
+      {{"wind.vx=-0.5"}, {"wind.vx"}},
+      {{"robot.start_offset_x=-0.5"}, {"robot.start_offset_x"}},
+  };
+  for (const Case& c : cases) {
+    std::vector<Setting> settings;
+    for (const char* o : c.set) settings.push_back(parse_override(o));
+    const std::string w = warnings_of(build_scenario(settings));
+    EXPECT_NE(w, "") << c.set.front();
+    for (const char* key : c.named) EXPECT_NE(w.find(key), std::string::npos) << key << ": " << w;
+  }
+  // coherent again once derived
+  EXPECT_EQ(warnings_of(with({"wind.vx=0.5"})), "");
+  EXPECT_EQ(
+      warnings_of(with({"wind.vx=0.9", "wind.vy=0.2", "robot.start_y=3.2222222", "arena.y_max=4"})),
+      "");
 }
 
 TEST(Scenario, FormatNumberRoundTrips) {

@@ -483,5 +483,52 @@ TEST(Reproducibility, RunOnceIsAPureFunctionOfScenarioSeedAndTrial) {
   }
 }
 
+// Scenarios that stay coherent (docs/scenarios.md): the plume reaches the robot however the
+// wind or the source is set
+
+Scenario scenario_of(const std::vector<const char*>& overrides, double timeout) {
+  std::vector<Setting> settings;
+  for (const char* o : overrides) settings.push_back(parse_override(o));
+  settings.push_back(parse_override("supervisor.timeout=" + std::to_string(timeout)));
+  return build_scenario(settings);
+}
+
+// how many of the runs of the paper's algorithms sense odor within `seconds` of release
+int runs_finding_odor(const std::vector<const char*>& overrides, double seconds, int trials) {
+  int found = 0;
+  for (const Algorithm algorithm : builtin_algorithms()) {
+    Scenario s = scenario_of(overrides, seconds);
+    s.controller.algorithm = algorithm;
+    for (int trial = 0; trial < trials; ++trial) {
+      World world(s, kSeed, static_cast<std::uint64_t>(trial));
+      bool odor = world.odor();
+      while (!world.done() && !odor) {
+        world.step();
+        odor = world.odor();
+      }
+      found += odor;
+    }
+  }
+  return found;
+}
+
+TEST(CoherentScenarios, ASlowerWindOrAMovedSourceStillReachesTheRobot) {
+  constexpr int kTrials = 10, kRuns = 3 * kTrials;
+  // why 90%: a robot released at the plume's end senses it within 15 s in every run of the
+  // paper's setup (30 of 30 measured, as here for each case); the wind sensor's noise at a slow
+  // wind may steer a run off the plume's side first
+  for (const auto& set : std::vector<std::vector<const char*>>{
+           {}, {"wind.vx=0.5"}, {"wind.vx=0.3"}, {"source.y=1.0"}, {"source.y=-1.2"}}) {
+    const std::string name = set.empty() ? "default" : set.front();
+    EXPECT_GE(runs_finding_odor(set, 15.0, kTrials), 0.9 * kRuns) << name;
+    EXPECT_TRUE(scenario_warnings(scenario_of(set, 15.0)).empty()) << name;
+  }
+  // as before derivation: the 1600-filament ring ends the plume 8 m downwind at 0.5 m/s, and
+  // a start that stays put misses a moved source; no run can sense odor in 15 s
+  EXPECT_EQ(
+      runs_finding_odor({"wind.vx=0.5", "plume.capacity=1600", "sim.warmup=20"}, 15.0, kTrials), 0);
+  EXPECT_EQ(runs_finding_odor({"source.y=1.0", "robot.start_y=0"}, 15.0, kTrials), 0);
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -83,7 +83,8 @@ CLI::App* ProbeCommand::add(CLI::App& app) {
 }
 
 int ProbeCommand::run() {
-  const Scenario s = scenario.load();
+  // why: the warnings are about the robot's start, which a probe has no use for
+  const Scenario s = scenario.load(false);
   const auto at = parse_points(points);
   options.seed = parse_u64("--seed", seed);
   options.centreline_x = parse_positions(centreline);

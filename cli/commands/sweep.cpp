@@ -161,6 +161,7 @@ int agree_on_sweep(Ranks& ranks, const SweepCommand& cmd, std::optional<SweepPla
     failure = std::current_exception();
   }
   const int code = failure ? exit_code(failure) : 0;
+  if (root && !failure) print_sweep_warnings(plan->sweeps);
   auto codes = ranks.all_gather(code);
   const int worst = *std::max_element(codes.begin(), codes.end());
   if (worst != 0) {
@@ -262,6 +263,7 @@ int SweepCommand::run() {
   ranks.emplace();
   if (ranks->size() > 1) return run_sweep_on_ranks(*this, *ranks);
   const SweepPlan plan = plan_sweep(*this);
+  print_sweep_warnings(plan.sweeps);
   const auto results = open_sweep_store(plan, *this);
   CampaignResult result;
   if (!run_with_progress(sweep_label(plan), plan.sweeps, *results, runs, sweep_flags(*this), result,

@@ -24,8 +24,9 @@ your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plum
 ``python3 -m plumetrace.report OUT_DIR``).
 """
 
-__all__ = ["ConfigError", "MAX_THREADS", "Scenario", "StoreError", "SweepRows", "algorithms",
-           "probe", "result_fields", "run", "sweep", "__version__"]
+__all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning", "StoreError",
+           "SweepRows", "algorithms", "probe", "register_controller", "result_fields", "run",
+           "sweep", "__version__"]
 
 
 def __getattr__(name):

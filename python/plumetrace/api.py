@@ -3,8 +3,10 @@
 import json
 import math
 import numbers
+import warnings
 
 from . import _core
+from .controllers import Param, register_controller  # noqa: F401  (plumetrace.Param, ...)
 
 ConfigError = _core.ConfigError
 StoreError = _core.StoreError
@@ -12,8 +14,14 @@ __version__ = _core.__version__
 MAX_THREADS = _core.MAX_THREADS  # the most worker threads a sweep may ask for (docs/reliability.md)
 
 
+class ScenarioWarning(UserWarning):
+    """A scenario that runs but is unlikely to be tracked: the robot starts outside odor, or the
+    plume cannot reach it within the warm-up (docs/scenarios.md); the message names the keys."""
+
+
 def algorithms():
-    """Names of the built-in algorithms."""
+    """Names of the registered algorithms: the built-in ones, then those registered in this
+    process (register_controller)."""
     return list(_core.algorithms())
 
 
@@ -63,6 +71,11 @@ class Scenario:
     def to_toml(self):
         """The fully resolved configuration as TOML (reads back to the same scenario)."""
         return _core.resolve_toml(self._path, self._overrides)
+
+    def warnings(self):
+        """Why this scenario is unlikely to be tracked, one sentence each naming the keys to
+        change (the robot starts outside odor, the plume cannot reach it); [] if nothing."""
+        return list(_core.scenario_warnings(self._path, self._overrides))
 
     def __getitem__(self, key):
         node = self.to_dict()
@@ -129,6 +142,8 @@ def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_int
     0.25 s unless `snapshot_interval` says otherwise (default without a view: none).
     """
     path, settings = _settings(scenario, algorithm, overrides, kwargs)
+    for message in _core.scenario_warnings(path, settings):
+        warnings.warn(message, ScenarioWarning, stacklevel=2)
     if snapshot_interval is None:
         snapshot_interval = 0.25 if view is not None else 0.0
     return _core.run(path, settings, _whole("seed", seed, 0, 2**64 - 1),

@@ -23,8 +23,7 @@ spec.loader.exec_module(example)
 def test_python_surge_cast_equals_the_built_in_run_for_run():
     for trial in range(6):
         for sigma in (0.0, 0.5):
-            mine = pt.run(algorithm="surge-cast", seed=13, trial=trial, controller=example.SurgeCast,
-                          wind_sensor__sigma_a=sigma)
+            mine = pt.run(algorithm="py-surge-cast", seed=13, trial=trial, wind_sensor__sigma_a=sigma)
             builtin = pt.run(algorithm="surge-cast", seed=13, trial=trial, wind_sensor__sigma_a=sigma)
             for key in ("outcome", "time_s", "d_t", "d_u", "losses", "odor_fraction", "steps",
                         "wind_samples"):
@@ -33,24 +32,161 @@ def test_python_surge_cast_equals_the_built_in_run_for_run():
             assert np.array_equal(mine["trajectory"]["x"], builtin["trajectory"]["x"])
 
 
-def test_python_surge_cast_sweeps_like_the_built_in(tmp_path):
-    sweep = tmp_path / "sc.toml"
-    sweep.write_text(f"""
+def test_python_surge_cast_sweeps_its_own_key_like_the_built_in(tmp_path):
+    def sweep_file(algorithm, table):
+        path = tmp_path / f"{table}.toml"
+        path.write_text(f"""
 name = "sc"
 scenario = "{ROOT / 'scenarios' / 'lochmatter2008.toml'}"
 runs = 3
 seed = 99
 [set]
-controller.algorithm = "surge-cast"
+controller.algorithm = "{algorithm}"
 robot.start_x = 6.0
 [[axis]]
-key = "surge_cast.d_cast"
+key = "{table}.d_cast"
 values = [0.135, 0.27, 0.54]
 """)
-    mine = pt.sweep(sweep, threads=2, controller=example.SurgeCast).to_numpy()
-    builtin = pt.sweep(sweep, threads=2).to_numpy()
+        return path
+
+    mine = pt.sweep(sweep_file("py-surge-cast", "py_surge_cast"), threads=2).to_numpy()
+    builtin = pt.sweep(sweep_file("surge-cast", "surge_cast"), threads=2).to_numpy()
+    assert list(mine["py_surge_cast.d_cast"]) == list(builtin["surge_cast.d_cast"])
     for key in ("outcome", "d_t", "d_u", "time_s", "losses", "steps"):
         assert np.array_equal(mine[key], builtin[key]), key
+    # the values make a difference, so the equality shows each point ran with its own
+    assert len({tuple(mine["d_t"][mine["point"] == p]) for p in range(3)}) > 1
+
+
+# a controller of one's own with keys of its own: it zigzags upwind, legs of `leg` metres, and
+# gives up after `turns` legs
+def _zigzag_class(seen):
+    from plumetrace.controllers import Controller
+
+    class Zig(Controller):
+        params = {
+            "leg": pt.Param(0.5, min=0.1, max=5.0, help="path length of each leg (m)"),
+            "turns": pt.Param(1000, min=1, help="legs before it gives up"),
+            "first": pt.Param("left", choices=["left", "right"], help="side of the first leg"),
+        }
+
+        def __init__(self, params, rng):
+            super().__init__(params, rng)
+            seen.append(dict(params))
+            self.side = 1 if params.first == "left" else -1
+            self.start = 0.0
+            self.legs = 0
+            self.heading = None
+
+        def step(self, obs, wind):
+            if self.heading is None or obs.odometer - self.start >= self.params.leg:
+                if self.heading is not None:
+                    self.side, self.legs = -self.side, self.legs + 1
+                if self.legs >= self.params.turns:
+                    return self.abandon()
+                self.heading = self.measure_upwind(wind, obs) + self.side * 0.7
+                self.start = obs.odometer
+            return self.go(self.heading)
+
+    return Zig
+
+
+def test_a_registered_python_controller_has_config_keys_of_its_own(tmp_path):
+    seen = []
+    pt.register_controller("zigzag", _zigzag_class(seen))
+    assert "zigzag" in pt.algorithms()
+    s = pt.Scenario(controller__algorithm="zigzag")
+    toml = s.to_toml()
+    assert "[zigzag]\nleg = 0.5  # path length of each leg (m)\n" in toml
+    assert "turns = 1000  # legs before it gives up\n" in toml
+    assert "first = \"left\"" in toml
+    s.zigzag.leg = 1.25
+    assert s["zigzag.leg"] == 1.25
+    # checked against the declared range and type, naming the key
+    with pytest.raises(pt.ConfigError, match=r"zigzag\.leg: must be a number >= 0\.1 and <= 5"):
+        s["zigzag.leg"] = 7.0
+    with pytest.raises(pt.ConfigError, match=r"zigzag\.first: must be one of 'left', 'right'"):
+        s["zigzag.first"] = "up"
+    with pytest.raises(pt.ConfigError, match=r"unknown config key 'zigzag\.legs'.*zigzag\.leg"):
+        s["zigzag.legs"] = 1.0
+    # a run sees its values; the result names the controller
+    r = pt.run(s, seed=3, trial=1, trace=False, zigzag__turns=4, zigzag__first="right")
+    assert seen[-1] == {"leg": 1.25, "turns": 4, "first": "right"}
+    assert r["algorithm"] == "zigzag" and r["outcome"] == "gave_up"
+    assert r["d_t"] == pytest.approx(4 * 1.25, abs=0.02)
+    # a sweep axis over its key: each value a point of its own, resolved and run with it
+    sweep = tmp_path / "zig.toml"
+    sweep.write_text("""
+name = "zig"
+runs = 2
+seed = 5
+[set]
+controller.algorithm = "zigzag"
+zigzag.turns = 3
+[[axis]]
+key = "zigzag.leg"
+values = [0.5, 1.5]
+""")
+    seen.clear()
+    rows = pt.sweep(sweep, threads=1).to_numpy()
+    assert list(rows["zigzag.leg"]) == [0.5, 0.5, 1.5, 1.5]
+    assert sorted(v["leg"] for v in seen) == [0.5, 0.5, 1.5, 1.5]
+    assert list(rows["d_t"] > 3 * rows["zigzag.leg"] - 0.01) == [True] * 4
+    # the resolved configs of the two points differ (their hashes identify the points)
+    a = pt.Scenario(controller__algorithm="zigzag", zigzag__leg=0.5).to_toml()
+    b = pt.Scenario(controller__algorithm="zigzag", zigzag__leg=1.5).to_toml()
+    assert a != b and a.replace("leg = 0.5", "leg = 1.5") == b
+
+
+def test_registering_again_replaces_and_bad_registrations_name_the_problem():
+    from plumetrace.controllers import Controller
+
+    class One(Controller):
+        params = {"size": pt.Param(2, min=1, max=9, help="a size")}
+
+        def step(self, obs, wind):
+            return self.abandon()
+
+    pt.register_controller("again", One)
+    assert pt.Scenario()["again.size"] == 2
+    pt.register_controller("again", One, params={"width": pt.Param(0.3, help="a width")})
+    assert pt.Scenario()["again.width"] == 0.3
+    with pytest.raises(pt.ConfigError, match="unknown config key 'again.size'"):
+        pt.Scenario()["again.size"]
+    assert pt.algorithms().count("again") == 1
+    # names: a built-in's, a table of the scenario, not a name at all
+    for name, message in [("surge-cast", "taken by a controller of the library"),
+                          ("robot", "'robot' is a table of the scenario"),
+                          ("controller", "is a table of the scenario"),
+                          ("two words", "letters, digits"), ("", "letters, digits")]:
+        with pytest.raises(pt.ConfigError, match=message):
+            pt.register_controller(name, One)
+    # declarations: a default outside its range, a key that is no Param, a bad key name
+    with pytest.raises(pt.ConfigError, match=r"bad\.size: the default 0 is not within"):
+        pt.register_controller("bad", One, params={"size": pt.Param(0, min=1)})
+    with pytest.raises(TypeError, match=r"bad\.size: declare it with plumetrace\.Param"):
+        pt.register_controller("bad", One, params={"size": 3})
+    with pytest.raises(pt.ConfigError, match=r"bad\.two words: a key's name"):
+        pt.register_controller("bad", One, params={"two words": pt.Param(1.0)})
+    with pytest.raises(ValueError, match="not one of"):
+        pt.Param("up", choices=["left", "right"])
+    assert "bad" not in pt.algorithms()
+
+
+def test_no_controller_is_registered_while_runs_are_in_flight(tmp_path):
+    from plumetrace.controllers import Controller
+
+    class Registers(Controller):
+        def step(self, obs, wind):
+            pt.register_controller("late", Registers)
+            return self.abandon()
+
+    pt.register_controller("registers", Registers)
+    with pytest.raises(RuntimeError, match="runs are in progress"):
+        pt.run(algorithm="registers", trace=False)
+    assert "late" not in pt.algorithms()
+    # once the run is over, registering works again (and leaves a harmless "registers")
+    pt.register_controller("registers", _zigzag_class([]))
 
 
 def test_a_controller_sees_measurements_only():
@@ -101,13 +237,12 @@ def test_runs_from_python_open_in_the_viewer(tmp_path):
     assert mine.read_bytes() == cli.read_bytes()
 
     # a Python controller's run: its states and its name reach the page and the figure
-    r = pt.run(algorithm="surge-cast", seed=13, trial=0, controller=example.SurgeCast,
-               view=tmp_path / "mine.html")
+    r = pt.run(algorithm="py-surge-cast", seed=13, trial=0, view=tmp_path / "mine.html")
     data = _page_data(tmp_path / "mine.html")
-    assert data["result"]["algorithm"] == "python"
+    assert data["result"]["algorithm"] == "py-surge-cast"
     assert data["steps"] == r["steps"] + 1
     assert set(data["states"]) == set(r["trajectory"]["state"])
-    pt.run(algorithm="surge-cast", controller=example.SurgeCast, view=tmp_path / "mine.svg")
+    pt.run(algorithm="py-surge-cast", view=tmp_path / "mine.svg")
     assert (tmp_path / "mine.svg").read_text().startswith("<svg")
 
     with pytest.raises(ValueError, match="view 'x.png'"):

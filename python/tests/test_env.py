@@ -278,7 +278,7 @@ def test_surge_cast_driving_the_environment_gets_the_built_in_run():
         env = PlumeEnv(decision_interval=1, wind_every_step=False, wind_sensor__sigma_a=0.3)
         obs, info = env.reset(seed=4, options={"trial": trial})
         from plumetrace.controllers import controller_rng
-        agent = example.SurgeCast(pt.Scenario().to_dict(), controller_rng(4, trial))
+        agent = example.SurgeCast(pt.Scenario()["py_surge_cast"], controller_rng(4, trial))
         wind = SimpleNamespace(measure_wind_body=env.measure_wind)
         while True:
             # the odometry at full precision (the observation rounds it to float32)

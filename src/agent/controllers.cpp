@@ -52,6 +52,10 @@ std::vector<Algorithm> all_algorithms() {
   return all;
 }
 
+std::vector<Algorithm> builtin_algorithms() {
+  return {Algorithm::kCasting, Algorithm::kSurgeSpiral, Algorithm::kSurgeCast};
+}
+
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng) {
   const ControllerRegistry& registry = controller_registry();
   const auto i = static_cast<std::size_t>(params.algorithm);

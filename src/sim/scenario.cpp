@@ -67,16 +67,21 @@ bool is_key(std::string_view key, std::string_view table, std::string_view name)
          key[table.size()] == '.' && key.ends_with(name);
 }
 
-void check_number(const std::string& key, const NumberSpec& f, double file_value) {
+// what a derived key takes besides its range
+constexpr std::string_view kOrAuto = " or 'auto'";
+
+void check_number(const std::string& key, const NumberSpec& f, double file_value,
+                  std::string_view or_auto = "") {
   const double v = file_value * f.scale;
   if (std::isinf(v) && !f.allow_infinite) {
-    throw ConfigError(key + ": must be a finite number (got " + format_number(file_value) + ")");
+    throw ConfigError(key + ": must be a finite number" + std::string(or_auto) + " (got " +
+                      format_number(file_value) + ")");
   }
   const bool ok = !std::isnan(v) && (f.min_open ? v > f.min : v >= f.min) &&
                   (f.max_open ? v < f.max : v <= f.max);
   if (!ok) {
-    throw ConfigError(key + ": must be " + range_text(f) + " (got " + format_number(file_value) +
-                      ")");
+    throw ConfigError(key + ": must be " + range_text(f) + std::string(or_auto) + " (got " +
+                      format_number(file_value) + ")");
   }
 }
 
@@ -100,7 +105,7 @@ std::string strip_quotes(std::string_view text) {
 
 // the SI value of a number key from a typed value or text; throws naming the key and range
 double number_value(const std::string& key, const NumberSpec& spec, const ConfigValue& value,
-                    bool text) {
+                    bool text, std::string_view or_auto = "") {
   std::optional<double> v;
   if (text) {
     v = parse_double(std::get<std::string>(value));
@@ -110,14 +115,15 @@ double number_value(const std::string& key, const NumberSpec& spec, const Config
     v = static_cast<double>(*i);
   }
   if (!v) {
-    throw ConfigError(key + ": must be " + range_text(spec) + " (got " + format_value(value) + ")");
+    throw ConfigError(key + ": must be " + range_text(spec) + std::string(or_auto) + " (got " +
+                      format_value(value) + ")");
   }
-  check_number(key, spec, *v);
+  check_number(key, spec, *v, or_auto);
   return *v * spec.scale;
 }
 
 int integer_value(const std::string& key, const IntegerSpec& spec, const ConfigValue& value,
-                  bool text) {
+                  bool text, std::string_view or_auto = "") {
   std::optional<std::int64_t> v;
   if (text) {
     const std::string s = std::get<std::string>(value);
@@ -129,9 +135,16 @@ int integer_value(const std::string& key, const IntegerSpec& spec, const ConfigV
   }
   if (!v || *v < spec.min || *v > spec.max) {
     throw ConfigError(key + ": must be an integer >= " + std::to_string(spec.min) +
-                      " and <= " + std::to_string(spec.max) + " (got " + format_value(value) + ")");
+                      " and <= " + std::to_string(spec.max) + std::string(or_auto) + " (got " +
+                      format_value(value) + ")");
   }
   return static_cast<int>(*v);
+}
+
+// the value selects derivation: "auto" (quoted or not on the command line)
+bool is_auto(const ConfigValue& value, bool text) {
+  const auto* s = std::get_if<std::string>(&value);
+  return s && (text ? strip_quotes(*s) : *s) == "auto";
 }
 
 int choice_value(const std::string& key, const Choices& names, const ConfigValue& value,
@@ -195,6 +208,24 @@ class Setter final : public FieldVisitor {
               const Choices& names) override {
     if (match(key)) value.set(choice_value(std::string(key_), names, value_, text_));
   }
+  void derived_number(std::string_view key, double& value, std::string_view, const NumberSpec& spec,
+                      bool& automatic) override {
+    if (!match(key)) return;
+    automatic = is_auto(value_, text_);
+    if (!automatic) value = number_value(std::string(key_), spec, value_, text_, kOrAuto);
+  }
+  void derived_integer(std::string_view key, int& value, std::string_view, const IntegerSpec& spec,
+                       bool& automatic) override {
+    if (!match(key)) return;
+    automatic = is_auto(value_, text_);
+    if (!automatic) value = integer_value(std::string(key_), spec, value_, text_, kOrAuto);
+  }
+  void input_number(std::string_view key, double& value, std::string_view, const NumberSpec& spec,
+                    bool& automatic) override {
+    if (!match(key)) return;
+    value = number_value(std::string(key_), spec, value_, text_);
+    automatic = true;
+  }
 
   std::string_view key_;
   const ConfigValue& value_;
@@ -239,6 +270,31 @@ class Validator final : public FieldReader {
       throw ConfigError(full_key(current_table(), key) + ": must be " + choices_text(names));
     }
   }
+  void input_number(std::string_view key, double& value, std::string_view, const NumberSpec& spec,
+                    bool&) override {
+    check_number(full_key(current_table(), key), spec, unscale(value, spec.scale));
+  }
+};
+
+// every key that may be set, the input keys included, in file order
+class KeyLister final : public FieldVisitor {
+ public:
+  std::vector<std::string> keys;
+
+ private:
+  void number(std::string_view key, double&, std::string_view, const NumberSpec&) override {
+    keys.push_back(full_key(current_table(), key));
+  }
+  void integer(std::string_view key, int&, std::string_view, const IntegerSpec&) override {
+    keys.push_back(full_key(current_table(), key));
+  }
+  void choice(std::string_view key, ChoiceRef, std::string_view, const Choices&) override {
+    keys.push_back(full_key(current_table(), key));
+  }
+  void input_number(std::string_view key, double&, std::string_view, const NumberSpec&,
+                    bool&) override {
+    keys.push_back(full_key(current_table(), key));
+  }
 };
 
 [[noreturn]] void unknown_key(const Scenario& scenario, std::string_view key) {
@@ -246,10 +302,12 @@ class Validator final : public FieldReader {
   const auto dot = key.find('.');
   const std::string table(key.substr(0, dot == std::string_view::npos ? key.size() : dot + 1));
   std::string known;
-  for_each_value(scenario, [&](const FieldValue& f) {
-    const std::string k = full_key(f.table, f.name);
+  Scenario copy = scenario;
+  KeyLister lister;
+  copy.fields(lister);
+  for (const std::string& k : lister.keys) {
     if (k.starts_with(table)) known += (known.empty() ? "" : ", ") + k;
-  });
+  }
   std::string msg = "unknown config key '" + std::string(key) + "'";
   if (!known.empty()) msg += " (keys there: " + known + ")";
   throw ConfigError(msg);
@@ -337,32 +395,48 @@ void validate(const Scenario& scenario) {
     throw ConfigError(
         "supervisor.success_radius: must be a number > 0 (0 only with source.solid_radius > 0)");
   }
-  const auto& start = scenario.robot.start;
-  const double r = scenario.robot.radius;
+  const RobotParams& robot = scenario.robot;
+  const auto& start = robot.start;
+  const double r = robot.radius;
+  // where the start follows the source, the keys that put it there
+  const auto follows = [&](bool automatic, const char* axis, double source, double offset) {
+    if (!automatic) return std::string();
+    const std::string a(axis);
+    return " (robot.start_" + a + " follows the source: source." + a + " + robot.start_offset_" +
+           a + " = " + bound_text(source) + " + " + bound_text(offset) + " = " +
+           bound_text(source + offset) + " m; set robot.start_offset_" + a + " or robot.start_" +
+           a + ")";
+  };
   if (solid > 0.0 && std::hypot(start.x - src.x, start.y - src.y) <= solid + r) {
     throw ConfigError(
         "robot.start_x, robot.start_y: the robot must start clear of the solid source "
         "(source.solid_radius)");
   }
   if (start.x - r < a.x_min || start.x + r > a.x_max) {
-    throw ConfigError("robot.start_x: the robot must start inside the arena, clear of the walls");
+    throw ConfigError("robot.start_x: the robot must start inside the arena, clear of the walls" +
+                      follows(robot.start_x_auto, "x", src.x, robot.start_offset.x));
   }
   if (start.y - r < a.y_min || start.y + r > a.y_max) {
-    throw ConfigError("robot.start_y: the robot must start inside the arena, clear of the walls");
+    throw ConfigError("robot.start_y: the robot must start inside the arena, clear of the walls" +
+                      follows(robot.start_y_auto, "y", src.y, robot.start_offset.y));
   }
   if (scenario.sim.dt > scenario.supervisor.timeout) {
     throw ConfigError("sim.dt: must not exceed supervisor.timeout");
   }
   const double dt = scenario.sim.dt;
-  const auto steps = [&](const char* key, double time) {
+  const auto steps = [&](const char* key, double time, const std::string& why) {
     if (time / dt > kMaxSteps) {
       throw ConfigError(std::string(key) + ": must be at most " + bound_text(kMaxSteps) +
                         " steps of sim.dt (got " + bound_text(time) + " s / " + bound_text(dt) +
-                        " s = " + bound_text(time / dt) + " steps)");
+                        " s = " + bound_text(time / dt) + " steps)" + why);
     }
   };
-  steps("sim.warmup", scenario.sim.warmup);
-  steps("supervisor.timeout", scenario.supervisor.timeout);
+  steps("sim.warmup", scenario.sim.warmup,
+        scenario.sim.warmup_auto
+            ? " (derived from wind.vx = " + bound_text(scenario.wind.velocity.x) +
+                  " m/s and the arena's length: raise wind.vx or set sim.warmup)"
+            : "");
+  steps("supervisor.timeout", scenario.supervisor.timeout, "");
   if (scenario.wind.model == WindModel::kMeander) {
     // why: the grid's substeps grow as K / spacing^2 and speed^2 (docs/model.md section 3.1);
     // counted at the mean wind plus 4 standard deviations of the boundary noise
@@ -437,8 +511,104 @@ Scenario build_scenario(const std::vector<Setting>& settings) {
     if (overridden_row) continue;
     apply(scenario, s);
   }
+  derive_scenario(scenario);
   validate(scenario);
   return scenario;
+}
+
+double crossing_ratio(const Scenario& scenario) {
+  const double vx = scenario.wind.velocity.x;
+  if (!(vx > 0.0)) return 1.0;
+  const double length = scenario.arena.x_max - scenario.arena.x_min;
+  // why: written so that the reference itself gives exactly 1 (both products are 14.4 rounded
+  // the same way), so that the paper's setups keep their 1600 filaments and 20 s to the bit
+  const double ratio = (length * kReferenceWind) / (kReferenceArenaLength * vx);
+  return std::isfinite(ratio) ? std::max(1.0, ratio) : INFINITY;
+}
+
+double derived_ring_span(const Scenario& scenario) {
+  return kReferenceRingSpan * crossing_ratio(scenario);
+}
+
+int derived_capacity(const Scenario& scenario) {
+  const double count = std::ceil(scenario.plume.release_rate * derived_ring_span(scenario));
+  // why: at most the ring's limit; a plume that then ends before the robot is warned about
+  // (scenario_warnings) rather than refused, since every release rate up to its limit is valid
+  return count < kMaxCapacity ? std::max(1, static_cast<int>(count)) : kMaxCapacity;
+}
+
+double derived_warmup(const Scenario& scenario) {
+  return kReferenceWarmup * crossing_ratio(scenario);
+}
+
+void derive_scenario(Scenario& scenario) {
+  if (scenario.sim.warmup_auto) scenario.sim.warmup = derived_warmup(scenario);
+  if (scenario.plume.capacity_auto) scenario.plume.capacity = derived_capacity(scenario);
+  RobotParams& robot = scenario.robot;
+  const Vec3& source = scenario.source.center;
+  if (robot.start_x_auto) robot.start.x = source.x + robot.start_offset.x;
+  if (robot.start_y_auto) robot.start.y = source.y + robot.start_offset.y;
+}
+
+std::vector<std::string> scenario_warnings(const Scenario& scenario) {
+  // a length or time in a sentence: to the centimetre (or hundredth of a second)
+  const auto cm = [](double v) { return bound_text(std::round(v * 100.0) / 100.0); };
+  std::vector<std::string> out;
+  const Vec3& source = scenario.source.center;
+  const Pose& start = scenario.robot.start;
+  const double vx = scenario.wind.velocity.x;
+  if (!(vx > 0.0)) {
+    out.push_back("wind.vx = " + bound_text(vx) +
+                  " m/s does not carry odor downwind (+x) from the source: the robot starts "
+                  "outside odor; set wind.vx > 0");
+    return out;
+  }
+  const double downwind = start.x - source.x;
+  if (!(downwind > 0.0)) {
+    out.push_back("the robot starts upwind of the source (robot.start_x = " + cm(start.x) +
+                  " m, source.x = " + cm(source.x) +
+                  " m), outside odor: set robot.start_offset_x > 0 (or robot.start_x)");
+    return out;
+  }
+  // how far the odor spreads to each side of the centreline where the robot starts: the release
+  // radius, a filament's width and 3 standard deviations of the random walk on the way there
+  const PlumeParams& plume = scenario.plume;
+  const double dt = scenario.sim.dt;
+  const double steps = downwind / vx / dt;
+  const double spread = scenario.source.radius + plume.initial_width +
+                        3.0 * walk_stddev(plume, dt) * std::sqrt(steps);
+  const std::string move = "or move the robot's start (robot.start_offset_x or robot.start_x)";
+  const double front = vx * scenario.sim.warmup;
+  const bool ring = plume.lifetime == Lifetime::kRing;
+  const double span = static_cast<double>(plume.capacity) / plume.release_rate;
+  if (downwind > front + spread) {
+    out.push_back("the plume cannot reach the robot's start within the warm-up: its front is " +
+                  cm(front) + " m downwind of the source at release (wind.vx * sim.warmup = " +
+                  bound_text(vx) + " m/s * " + cm(scenario.sim.warmup) + " s), the robot " +
+                  cm(downwind) + " m: raise sim.warmup (or set it to \"auto\"), " + move);
+  } else if (ring && downwind > vx * span + spread) {
+    out.push_back(
+        "the robot starts outside odor, beyond the plume's end: the ring of plume.capacity = " +
+        std::to_string(plume.capacity) +
+        " filaments at plume.release_rate = " + bound_text(plume.release_rate) + " /s keeps " +
+        cm(span) + " s of plume, which ends " + cm(vx * span) +
+        " m downwind of the source at wind.vx = " + bound_text(vx) + " m/s, and the robot starts " +
+        cm(downwind) + " m downwind: raise plume.capacity (or set it to \"auto\"), " + move);
+  }
+  // the centreline of the mean wind where the robot starts
+  const double centre = source.y + scenario.wind.velocity.y / vx * downwind;
+  const double aside = std::abs(start.y - centre);
+  if (aside > spread) {
+    out.push_back("the robot starts outside odor, " + cm(aside) +
+                  " m to the side of the plume's centreline (y = " + cm(centre) +
+                  " m where it starts: source.y + wind.vy / wind.vx * (robot.start_x - "
+                  "source.x)), while the odor spreads about " +
+                  cm(spread) +
+                  " m to each side: set robot.start_y to \"auto\" (it follows source.y + "
+                  "robot.start_offset_y), or robot.start_offset_y or robot.start_y nearer the "
+                  "centreline");
+  }
+  return out;
 }
 
 std::string scenario_to_toml(const Scenario& scenario) {

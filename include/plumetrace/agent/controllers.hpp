@@ -73,6 +73,11 @@ std::string_view algorithm_name(Algorithm algorithm);
 /// Every registered algorithm, in registry order.
 std::vector<Algorithm> all_algorithms();
 
+/// The paper's three algorithms, built into the library: casting, surge-spiral, surge-cast.
+/// What holds for them alone (their loss rule, their wind sampling) is checked on these, not on
+/// every registered controller.
+std::vector<Algorithm> builtin_algorithms();
+
 /// Builds the controller of the selected algorithm with its random stream.
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng);
 

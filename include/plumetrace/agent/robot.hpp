@@ -14,8 +14,16 @@ struct RobotParams {
   double axle = 0.0885;
   /// Wheel-speed limit (m/s); the forward speed on straight lines.
   double wheel_speed = 0.106;
-  /// Start position and heading (m, rad): 14.5 m downwind of the source, facing upwind.
+  /// Start position and heading (m, rad): 14.5 m downwind of the source, facing upwind. x and y
+  /// are derived from the source unless set (derive_scenario, sim/scenario.hpp).
   Pose start{15.5, 0.0, kPi};
+  /// Start position relative to the source centre (m): robot.start_x = source.x + x and
+  /// robot.start_y = source.y + y, where those are "auto".
+  Vec2 start_offset{14.5, 0.0};
+  /// robot.start_x is "auto": it follows the source.
+  bool start_x_auto = true;
+  /// robot.start_y is "auto": it follows the source.
+  bool start_y_auto = true;
 
   /// The config keys (core/config.hpp).
   template <class V>
@@ -24,8 +32,14 @@ struct RobotParams {
     v("radius", radius, "body radius (m)", kPositive);
     v("axle", axle, "distance between the wheels (m)", kPositive);
     v("wheel_speed", wheel_speed, "wheel-speed limit = straight-line speed (m/s)", kPositive);
-    v("start_x", start.x, "start position x (m)", kAnyNumber);
-    v("start_y", start.y, "start position y (m)", kAnyNumber);
+    v("start_x", start.x, "start position x (m)", kAnyNumber, start_x_auto);
+    v("start_y", start.y, "start position y (m)", kAnyNumber, start_y_auto);
+    v.input("start_offset_x", start_offset.x,
+            "start x relative to the source: robot.start_x = source.x + this (m)", kAnyNumber,
+            start_x_auto);
+    v.input("start_offset_y", start_offset.y,
+            "start y relative to the source: robot.start_y = source.y + this (m)", kAnyNumber,
+            start_y_auto);
     v("start_heading_deg", start.heading, "start heading (deg, counter-clockwise from +x)",
       NumberSpec{.min = -kPi - 1e-12, .max = kPi + 1e-12, .scale = deg});
   }

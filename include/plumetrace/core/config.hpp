@@ -73,6 +73,8 @@ class ChoiceRef {
 ///   v("key", double_member, "help (unit)", NumberSpec{...});
 ///   v("key", int_member, "help", IntegerSpec{min, max});
 ///   v("key", enum_member, "help", {"name0", "name1"});
+///   v("key", member, "help", spec, member_auto);        // derived unless set: "auto"
+///   v.input("key", member, "help", spec, derived_auto);  // set, never stored: feeds a derived key
 /// The key is the part after the table ("dt" of "sim.dt"); the table is the struct's place in a
 /// Scenario. FieldVisitor is that protocol as virtual functions, so that params held without
 /// their type (AnyParams, core/registry.hpp) are visited in the same way.
@@ -100,8 +102,41 @@ class FieldVisitor {
   void operator()(std::string_view key, E& value, std::string_view help, const Choices& names) {
     choice(key, ChoiceRef(value), help, names);
   }
+  /// A real-valued key derived from other keys unless set (derive_scenario, sim/scenario.hpp):
+  /// "auto" turns `automatic` on, a number sets the value and turns it off. A resolved config
+  /// holds the value, derived or set.
+  void operator()(std::string_view key, double& value, std::string_view help,
+                  const NumberSpec& spec, bool& automatic) {
+    derived_number(key, value, help, spec, automatic);
+  }
+  /// An integer key derived from other keys unless set, as above.
+  void operator()(std::string_view key, int& value, std::string_view help, const IntegerSpec& spec,
+                  bool& automatic) {
+    derived_integer(key, value, help, spec, automatic);
+  }
+  /// A real-valued key that is set but never stored: it feeds a derived key, whose `automatic`
+  /// it turns on (robot.start_offset_x feeds robot.start_x). A resolved config holds the derived
+  /// key, not this one.
+  void input(std::string_view key, double& value, std::string_view help, const NumberSpec& spec,
+             bool& automatic) {
+    input_number(key, value, help, spec, automatic);
+  }
 
  protected:
+  /// Visits a derived real-valued key; by default as any real-valued key.
+  virtual void derived_number(std::string_view key, double& value, std::string_view help,
+                              const NumberSpec& spec, bool& /*automatic*/) {
+    number(key, value, help, spec);
+  }
+  /// Visits a derived integer key; by default as any integer key.
+  virtual void derived_integer(std::string_view key, int& value, std::string_view help,
+                               const IntegerSpec& spec, bool& /*automatic*/) {
+    integer(key, value, help, spec);
+  }
+  /// Visits an input key; by default not at all (it is not part of a resolved config).
+  virtual void input_number(std::string_view /*key*/, double& /*value*/, std::string_view /*help*/,
+                            const NumberSpec& /*spec*/, bool& /*automatic*/) {}
+
   /// Visits a real-valued key; `value` is SI.
   virtual void number(std::string_view key, double& value, std::string_view help,
                       const NumberSpec& spec) = 0;

@@ -106,18 +106,38 @@ class Registry {
   /// std::invalid_argument when the name or its table is taken.
   template <class Model, class Params>
   std::size_t add(std::string name) {
-    std::string table = name;
-    std::replace(table.begin(), table.end(), '-', '_');
+    return add(std::move(name), AnyParams(Params{}),
+               [](const AnyParams& p, Args... args) -> std::unique_ptr<Interface> {
+                 return std::make_unique<Model>(p.get<Params>(), args...);
+               });
+  }
+
+  /// Adds a model whose params are only known at run time (a controller written in Python):
+  /// `defaults` holds its params struct, `make` builds it from a copy of them. Returns its index;
+  /// throws std::invalid_argument when the name or its table is taken.
+  std::size_t add(std::string name, AnyParams defaults, Make make) {
+    std::string table = table_of(name);
     for (const Entry& e : entries_) {
       if (e.name == name || e.table == table) {
         throw std::invalid_argument("'" + name + "' is registered twice");
       }
     }
-    entries_.push_back({std::move(name), std::move(table), AnyParams(Params{}),
-                        [](const AnyParams& p, Args... args) -> std::unique_ptr<Interface> {
-                          return std::make_unique<Model>(p.get<Params>(), args...);
-                        }});
+    entries_.push_back({std::move(name), std::move(table), std::move(defaults), make});
     return entries_.size() - 1;
+  }
+
+  /// Gives entry i other default params and another factory (a Python controller registered
+  /// again under its name); its name and table stay.
+  void replace(std::size_t i, AnyParams defaults, Make make) {
+    Entry& e = entries_.at(i);
+    e.defaults = std::move(defaults);
+    e.make = make;
+  }
+
+  /// The config table of a model named `name`: the name with '-' written '_'.
+  static std::string table_of(std::string name) {
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
   }
 
   /// Every entry, in order.

@@ -111,8 +111,11 @@ struct PlumeParams {
   double spread_rate = 1.25e-5;
   /// How filaments leave.
   Lifetime lifetime = Lifetime::kRing;
-  /// Ring-buffer size (filaments), used with Lifetime::kRing.
+  /// Ring-buffer size (filaments), used with Lifetime::kRing; derived unless set
+  /// (derive_scenario, sim/scenario.hpp).
   int capacity = 1600;
+  /// plume.capacity is "auto": derived from the release rate, the arena's length and the wind.
+  bool capacity_auto = true;
   /// Concentration kernel. why: paper eq. 5 as printed (docs/fidelity.md, unknown 4).
   Kernel kernel = Kernel::kPrinted;
   /// Filaments farther than this from a query point contribute nothing (m); may be infinite.
@@ -143,7 +146,7 @@ struct PlumeParams {
       NumberSpec{.min = 0.0, .max = 100.0});
     v("lifetime", lifetime, "how filaments leave", {"ring", "leave_arena"});
     v("capacity", capacity, "ring-buffer size (filaments), lifetime = ring",
-      IntegerSpec{1, kMaxCapacity});
+      IntegerSpec{1, kMaxCapacity}, capacity_auto);
     v("kernel", kernel, "concentration kernel", {"gaussian", "printed"});
     v("cutoff", cutoff, "filaments farther than this contribute nothing (m, may be inf)",
       NumberSpec{.min = 0.0, .min_open = true, .allow_infinite = true});

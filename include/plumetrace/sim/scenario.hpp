@@ -22,14 +22,17 @@ namespace plumetrace {
 struct SimParams {
   /// Time step for plume, sensors, control and motion (s).
   double dt = 0.032;
-  /// Plume-only time before the robot is released (s).
+  /// Plume-only time before the robot is released (s); derived unless set (derive_scenario).
   double warmup = 20.0;
+  /// sim.warmup is "auto": derived from the arena's length and the wind.
+  bool warmup_auto = true;
 
   /// The config keys (core/config.hpp).
   template <class V>
   void fields(V& v) {
     v("dt", dt, "time step for everything (s)", kPositive);
-    v("warmup", warmup, "plume-only time before the robot is released (s)", kNonNegative);
+    v("warmup", warmup, "plume-only time before the robot is released (s)", kNonNegative,
+      warmup_auto);
   }
 };
 
@@ -109,6 +112,45 @@ inline constexpr double kMaxReleasePerStep = 1e6;
 /// The most substeps the meandering wind's grid may need per step of sim.dt: 1000. why: its cost
 /// grows with K / spacing^2 and the wind speed squared; beyond this a run would crawl.
 inline constexpr double kMaxWindSubsteps = 1000.0;
+
+/// The arena length (m) the paper's ring and warm-up were set for: the 16 m wind tunnel.
+inline constexpr double kReferenceArenaLength = 16.0;
+/// The wind (m/s) the paper's ring and warm-up were set for: the default reading's 0.9 m/s
+/// (the plugin's), with which a filament crosses the reference arena in 17.8 s.
+inline constexpr double kReferenceWind = 0.9;
+/// The time the paper's ring keeps at the reference (s): the plugin's 1600 filaments released at
+/// 100 /s; the plume then ends 14.4 m downwind of the source (docs/scenarios.md).
+inline constexpr double kReferenceRingSpan = 16.0;
+/// The paper's warm-up at the reference (s).
+inline constexpr double kReferenceWarmup = 20.0;
+
+/// How many times longer a filament takes to cross the arena along x (arena.x_max -
+/// arena.x_min at wind.vx) than at the reference (16 m at 0.9 m/s), and at least 1: 1 for the
+/// paper's setups; 1 as well where wind.vx <= 0 (scenario_warnings says why).
+double crossing_ratio(const Scenario& scenario);
+
+/// The time the ring keeps when plume.capacity is "auto" (s): kReferenceRingSpan *
+/// crossing_ratio, so that the plume reaches as far along the arena as the paper's.
+double derived_ring_span(const Scenario& scenario);
+
+/// plume.capacity when "auto": ceil(plume.release_rate * derived_ring_span), 1600 for the
+/// paper's setups, and at most kMaxCapacity.
+int derived_capacity(const Scenario& scenario);
+
+/// sim.warmup when "auto" (s): kReferenceWarmup * crossing_ratio, 20 s for the paper's setups.
+double derived_warmup(const Scenario& scenario);
+
+/// Computes every key left "auto" from the others: sim.warmup, plume.capacity, and
+/// robot.start_x, robot.start_y (source.x + robot.start_offset_x, source.y +
+/// robot.start_offset_y). A key set to a value keeps it. build_scenario calls it; call it after
+/// writing a Scenario's fields in code.
+void derive_scenario(Scenario& scenario);
+
+/// What makes a valid scenario an unlikely one to track: the robot starts outside odor (upwind
+/// of the source, beside the plume, or beyond its end), or the plume cannot reach the start
+/// within the warm-up. One sentence each, naming the keys to change; empty for the paper's
+/// setups. Geometric, at the mean wind (docs/scenarios.md).
+std::vector<std::string> scenario_warnings(const Scenario& scenario);
 
 /// Every config key of a scenario bound to its place, in file order (Scenario::fields).
 std::vector<Field> scenario_fields(Scenario& scenario);

@@ -81,5 +81,28 @@ assert [p[0] for p in points] == ["zigzag.leg = 0.5", "zigzag.leg = 1.5"], point
 assert "[zigzag]\nleg = 0.5  #" in points[0][1] and "[zigzag]\nleg = 1.5  #" in points[1][1]
 PY
 
+# registering zigzag changes no other controller's runs: a casting sweep run by this program and
+# by the plain command gives the same runs.csv (config hashes included), and the plain command
+# reuses the other's store without computing a run
+cat >"$tmp/casting.toml" <<'TOML'
+name = "casting"
+runs = 2
+[set]
+"controller.algorithm" = "casting"
+[[axis]]
+key = "casting.beta_deg"
+values = [10.0, 20.0]
+TOML
+"$zigzag" sweep "$tmp/casting.toml" --out "$tmp/c1" --threads 2 --quiet >/dev/null 2>&1 ||
+  fail "the casting sweep failed in the zigzag program"
+"$plumetrace" sweep "$tmp/casting.toml" --out "$tmp/c2" --threads 2 --quiet >/dev/null 2>&1 ||
+  fail "the casting sweep failed in the plain command"
+cmp -s "$tmp/c1/runs.csv" "$tmp/c2/runs.csv" ||
+  fail "registering zigzag changed the runs.csv of a casting sweep"
+"$plumetrace" sweep "$tmp/casting.toml" --out "$tmp/c1" --threads 2 >"$tmp/reuse.log" 2>&1 ||
+  fail "the plain command refused the zigzag program's store: $(cat "$tmp/reuse.log")"
+grep -q "0 computed now" "$tmp/reuse.log" ||
+  fail "the plain command recomputed the zigzag program's casting runs: $(cat "$tmp/reuse.log")"
+
 [ "$failed" -eq 0 ] && echo "example_zigzag: ok"
 exit "$failed"

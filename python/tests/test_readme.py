@@ -28,7 +28,7 @@ def test_the_section_has_the_first_script_and_the_example_controller():
     blocks = python_blocks()
     assert len(blocks) >= 3
     assert any('paper.sets["A"]' in b and "to_pandas()" in b for b in blocks)
-    assert any("from plumetrace.examples.python_surge_cast import SurgeCast" in b for b in blocks)
+    assert any("plumetrace.examples.python_surge_cast" in b for b in blocks)
     assert not any("from python_surge_cast" in b for b in blocks)
 
 

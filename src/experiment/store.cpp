@@ -1479,7 +1479,7 @@ void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
         if (!fresh_point) continue;
         ++next[s.name];
         writer.put({s.name, s.numbers[i], s.axis_values[i], s.hashes[i],
-                    scenario_to_toml(sweeps[k].points[i].scenario)});
+                    scenario_to_toml(sweeps[k].points[i].scenario, ConfigKeys::kOfTheRun)});
       }
     }
     writer.finish();

@@ -121,7 +121,7 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
           {def.axes[a].key, v, false, where + ": axis " + def.axes[a].key, Layer::kAxis});
     }
     point.scenario = build_scenario(settings);
-    point.config_hash = hash_text(scenario_to_toml(point.scenario));
+    point.config_hash = hash_text(scenario_to_toml(point.scenario, ConfigKeys::kOfTheRun));
     out.points.push_back(std::move(point));
   }
   return out;
@@ -140,7 +140,7 @@ std::string plume_key(const Scenario& scenario) {
     // a wind field other than the constant one covers the whole arena (its grid)
     p.arena = scenario.arena;
   }
-  return hash_text(scenario_to_toml(p));
+  return hash_text(scenario_to_toml(p, ConfigKeys::kOfTheRun));
 }
 
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,

@@ -611,10 +611,24 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario) {
   return out;
 }
 
-std::string scenario_to_toml(const Scenario& scenario) {
+std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
+  // why: the keys of a controller registered outside the library (examples/zigzag, a Python
+  // one) are in a run's config only when it is the one that runs, so that registering it
+  // changes neither the stored config nor the hash of a run of any other controller (a store
+  // made by the plain command stays the same store in a program with more controllers)
+  const ControllerRegistry& registry = controller_registry();
+  const std::size_t builtins = builtin_algorithms().size();
+  const auto chosen = static_cast<std::size_t>(scenario.controller.algorithm);
+  std::vector<std::string> unused_tables;
+  for (std::size_t i = builtins; keys == ConfigKeys::kOfTheRun && i < registry.size(); ++i) {
+    if (i != chosen) unused_tables.push_back(registry[i].table);
+  }
   std::ostringstream out;
   std::string table;
   for_each_value(scenario, [&](const FieldValue& f) {
+    if (std::find(unused_tables.begin(), unused_tables.end(), f.table) != unused_tables.end()) {
+      return;
+    }
     if (f.table != table) {
       out << (table.empty() ? "" : "\n") << "[" << f.table << "]\n";
       table = f.table;

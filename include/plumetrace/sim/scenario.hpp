@@ -178,9 +178,16 @@ struct FieldValue {
 /// Calls `f` for every key of the scenario, in file order, without copying it.
 void for_each_value(const Scenario& scenario, const std::function<void(const FieldValue&)>& f);
 
-/// The fully resolved scenario as TOML that reads back to the same scenario: every key, in the
-/// order of the field list, with its help as a comment. Its hash identifies a sweep point.
-std::string scenario_to_toml(const Scenario& scenario);
+/// Which keys scenario_to_toml writes.
+enum class ConfigKeys {
+  kAll,       ///< every key, the tables of every registered controller included
+  kOfTheRun,  ///< a controller registered outside the library only when it is the one that runs
+};
+
+/// The fully resolved scenario as TOML that reads back to the same scenario: its keys, in the
+/// order of the field list, with its help as a comment. With ConfigKeys::kOfTheRun (what a sweep
+/// point stores and hashes) registering a controller changes no other controller's config.
+std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys = ConfigKeys::kAll);
 
 /// Where a setting comes from; later layers override earlier ones.
 enum class Layer {

@@ -271,3 +271,31 @@ def test_report_refuses_a_store_of_another_sweep_naming_it(tmp_path):
         pt.report(GOLDEN, store=tmp_path / "missing.sqlite", out=tmp_path / "m")
     with pytest.raises(TypeError, match="out: give the folder"):
         pt.report(pt.sweep(GOLDEN, runs=1))
+
+
+def test_a_count_whose_interval_runs_off_the_overhead_panel_stays_inside_it():
+    # two steady points and one of three successful runs whose t interval spans metres: the
+    # limits follow the steady points, and its "n=3" is drawn at the panel's top edge with an arrow
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from plumetrace.report.data import Point
+    from plumetrace.report.figures import draw_sweep_panels
+
+    def point(n, mean, lo, hi):
+        return Point(value=None, runs=8, successes=n, walls=8 - n, timeouts=0, gave_up=0,
+                     rate=n / 8, rate_lo=0.0, rate_hi=1.0, oh_n=n, oh_mean=mean, oh_lo=lo,
+                     oh_hi=hi, oh_median=mean, oh_q1=mean, oh_q3=mean, mean_time=None,
+                     mean_losses=None, config_hash=None)
+
+    fig = Figure()
+    ax_rate, ax_oh = fig.subplots(1, 2)
+    points = [point(8, 1.3, 1.2, 1.4), point(7, 1.5, 1.4, 1.6), point(3, 2.1, 0.3, 3.9)]
+    draw_sweep_panels(ax_rate, ax_oh, ["a", "b", "c"], [(None, points)], "x")
+    top = ax_oh.get_ylim()[1]
+    assert top < 3.9
+    labels = {t.get_text(): t.xy[1] for t in ax_oh.texts if t.get_text().startswith("n=")}
+    assert labels["n=8"] == 1.4 and labels["n=7"] == 1.6
+    assert labels["n=3 \u2191"] == top

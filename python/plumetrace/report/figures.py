@@ -242,6 +242,14 @@ def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[
         bottom = min(lows + [1.0])
         span = max(top - bottom, 0.05)
         ax_oh.set_ylim(min(1.0, bottom) - 0.05 * span, top + 0.18 * span)
+        # a count whose interval runs off the panel is drawn at its top edge, marked with an arrow
+        for text in ax_oh.texts:
+            if text.get_text().startswith("n=") and getattr(text, "xy", (0, 0))[1] > top:
+                text.xy = (text.xy[0], ax_oh.get_ylim()[1])
+                text.xyann = (3, -3)
+                text.set_verticalalignment("top")
+                text.set_horizontalalignment("left")
+                text.set_text(text.get_text() + " \u2191")
         for xi in no_overhead:
             ax_oh.text(xi, 0.0, " none", rotation=90, ha="center", va="bottom", fontsize=7,
                        color=MISSING_COLOR, transform=ax_oh.get_xaxis_transform())

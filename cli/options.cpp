@@ -6,8 +6,10 @@
 #include "lochmatter2008/study.hpp"
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/scenario_io.hpp"
+#include "plumetrace/io/sweep_file.hpp"
 #include "validators.hpp"
 
 namespace plumetrace::cli {
@@ -111,6 +113,26 @@ std::uint64_t parse_u64(const std::string& option, const std::string& text) {
                       text + "')");
   }
   return v;
+}
+
+void StoredSweepOptions::add_to(CLI::App& sub, const std::string& out_help, bool out_required) {
+  sub.add_option("sweeps", sweep_files, "the sweep files the store was made from")
+      ->required()
+      ->check(not_empty());
+  sub.add_option("--store", store, "results store")->required()->check(not_empty());
+  sub.add_option("--out", out, out_help)->required(out_required)->check(not_empty());
+  sub.add_option("--runs", runs, "runs per point (default: the sweep files')")
+      ->check(whole_number(1, kMaxCampaignRuns));
+  sub.add_option("--set", sets, "the --set overrides the sweep ran with (repeatable)")
+      ->allow_extra_args(false);
+}
+
+std::vector<ExpandedSweep> StoredSweepOptions::sweeps() const {
+  std::vector<ExpandedSweep> result;
+  for (const auto& f : sweep_files) {
+    result.push_back(expand_sweep(read_sweep_file(f), parse_sets(sets)));
+  }
+  return result;
 }
 
 }  // namespace plumetrace::cli

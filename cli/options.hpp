@@ -45,6 +45,21 @@ struct CampaignFlags {
   std::string study_file() const;
 };
 
+/// The options of the commands that read a store made from sweep files (export, report): the
+/// sweep files, --store, --out, --runs and the --set values the sweep ran with.
+struct StoredSweepOptions {
+  std::vector<std::string> sweep_files;
+  std::string store;
+  std::string out;
+  int runs = 0;
+  std::vector<std::string> sets;
+
+  /// Registers them on `sub`, --out with its help and required when `out_required`.
+  void add_to(CLI::App& sub, const std::string& out_help, bool out_required);
+  /// The sweeps the files and --set values say.
+  std::vector<ExpandedSweep> sweeps() const;
+};
+
 /// --set key=value texts as settings; throws ConfigError for one without '='.
 std::vector<Setting> parse_sets(const std::vector<std::string>& sets);
 

@@ -97,11 +97,7 @@ struct SweepCommand final : Command {
 
 /// `plumetrace export SWEEP.toml... --store FILE --out DIR`: a store's exports.
 struct ExportCommand final : Command {
-  std::vector<std::string> sweep_files;
-  std::string store;
-  std::string out;
-  int runs = 0;
-  std::vector<std::string> sets;
+  StoredSweepOptions from;
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
@@ -109,11 +105,7 @@ struct ExportCommand final : Command {
 
 /// `plumetrace report SWEEP.toml... --store FILE [--out DIR]`: the report of any sweep.
 struct ReportCommand final : Command {
-  std::vector<std::string> sweep_files;
-  std::string store;
-  std::string out;
-  int runs = 0;
-  std::vector<std::string> sets;
+  StoredSweepOptions from;
 
   CLI::App* add(CLI::App& app) override;
   int run() override;

@@ -16,26 +16,16 @@ CLI::App* ReportCommand::add(CLI::App& app) {
       "report",
       "draw the report of any sweep from a results store: two panels per sweep (success rate, "
       "overhead), the summary tables, and the points that have runs missing");
-  sub->add_option("sweeps", sweep_files, "the sweep file(s) the store was run with")
-      ->required()
-      ->check(not_empty());
-  sub->add_option("--store", store, "results store")->required()->check(not_empty());
-  sub->add_option("--out", out,
-                  "output folder: report.html, report.md, report.csv, figures/ and the exports "
-                  "(default: the store's folder)")
-      ->check(not_empty());
-  sub->add_option("--runs", runs, "runs per point (default: the sweep files')")
-      ->check(whole_number(1, kMaxCampaignRuns));
-  sub->add_option("--set", sets, "the --set overrides the sweep ran with (repeatable)")
-      ->allow_extra_args(false);
+  from.add_to(*sub,
+              "output folder: report.html, report.md, report.csv, figures/ and the exports "
+              "(default: the store's folder)",
+              false);
   return sub;
 }
 
 int ReportCommand::run() {
-  std::vector<ExpandedSweep> sweeps;
-  for (const auto& f : sweep_files) {
-    sweeps.push_back(expand_sweep(read_sweep_file(f), parse_sets(sets)));
-  }
+  const std::vector<ExpandedSweep> sweeps = from.sweeps();
+  const auto& [sweep_files, store, out, runs, sets] = from;
   check_campaign_size(sweeps, runs);
   const std::vector<RunRow> rows = read_campaign_rows(store, sweeps);
   const auto incomplete = incomplete_points(sweeps, rows, runs);

@@ -157,9 +157,7 @@ MeanderWind::MeanderWind(const WindParams& params, const WindRegion& region, Rng
   // diffusion between the edges, which are linear between the corners
   for (int k = 0; k < 2; ++k) {
     std::vector<double>& g = k == 0 ? u_ : v_;
-    const double m = k == 0 ? mean_.x : mean_.y;
-    const double c00 = m + noise_[4 * k].value, c10 = m + noise_[4 * k + 1].value;
-    const double c01 = m + noise_[4 * k + 2].value, c11 = m + noise_[4 * k + 3].value;
+    const auto [c00, c10, c01, c11] = corners(k);
     for (int j = 0; j < ny_; ++j) {
       const double s = static_cast<double>(j) / (ny_ - 1);
       for (int i = 0; i < nx_; ++i) {
@@ -176,12 +174,16 @@ MeanderWind::MeanderWind(const WindParams& params, const WindRegion& region, Rng
   refresh_cells();
 }
 
+std::array<double, 4> MeanderWind::corners(int k) const {
+  const double m = k == 0 ? mean_.x : mean_.y;
+  return {m + noise_[4 * k].value, m + noise_[4 * k + 1].value, m + noise_[4 * k + 2].value,
+          m + noise_[4 * k + 3].value};
+}
+
 void MeanderWind::set_edges() {
   for (int k = 0; k < 2; ++k) {
     std::vector<double>& g = k == 0 ? u_ : v_;
-    const double m = k == 0 ? mean_.x : mean_.y;
-    const double c00 = m + noise_[4 * k].value, c10 = m + noise_[4 * k + 1].value;
-    const double c01 = m + noise_[4 * k + 2].value, c11 = m + noise_[4 * k + 3].value;
+    const auto [c00, c10, c01, c11] = corners(k);
     for (int i = 0; i < nx_; ++i) {
       const double r = static_cast<double>(i) / (nx_ - 1);
       g[index(i, 0)] = c00 + r * (c10 - c00);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -93,6 +94,9 @@ class MeanderWind final : public WindField {
     return static_cast<std::size_t>(i) +
            static_cast<std::size_t>(nx_) * static_cast<std::size_t>(j);
   }
+  /// The corners of component k (0: u, 1: v) now, mean plus noise: (x_min, y_min),
+  /// (x_max, y_min), (x_min, y_max), (x_max, y_max).
+  std::array<double, 4> corners(int k) const;
   void set_edges();
   void update_inside(double h);
   void refresh_cells();

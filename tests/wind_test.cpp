@@ -690,6 +690,74 @@ TEST(MeanderWind, TheInsideStaysStableWithSubsteps) {
   EXPECT_LT(largest, 0.9 + 8.0 * std::sqrt(coloured_noise_variance({0.3, 0.1, 0.2})));
 }
 
+// issue 22, G1: gain 10, bandwidth 100 and damping 10, each inside its range, made the wind NaN
+TEST(MeanderWind, UnstableCombinationsAreRefusedNamingTheKeys) {
+  Scenario s = meander_scenario();
+  s.wind.meander.gain = 10.0;
+  s.wind.meander.bandwidth = 100.0;
+  s.wind.meander.damping = 10.0;
+  try {
+    validate(s);
+    ADD_FAILURE() << "a meander that overshoots its grid was accepted";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    for (const char* key : {"wind.meander_gain", "wind.meander_bandwidth", "wind.meander_damping",
+                            "wind.meander_kx", "wind.meander_nx"}) {
+      EXPECT_NE(what.find(key), std::string::npos) << key << ": " << what;
+    }
+  }
+}
+
+// every combination validate() accepts, drawn log-uniformly over the keys' whole ranges, keeps
+// a finite field bounded by the noise that drives it (the cell Peclet and step bounds of
+// docs/model.md section 3.1)
+TEST(MeanderWind, EveryAcceptedCombinationStaysFinite) {
+  Rng draw(22);
+  const auto log_uniform = [&](double lo, double hi) {
+    return std::exp(std::log(lo) + draw.uniform() * (std::log(hi) - std::log(lo)));
+  };
+  int accepted = 0;
+  for (int trial = 0; trial < 400 && accepted < 60; ++trial) {
+    Scenario s = meander_scenario();
+    MeanderParams& m = s.wind.meander;
+    m.gain = log_uniform(1e-3, 10.0);
+    m.damping = log_uniform(1e-3, 10.0);
+    m.bandwidth = log_uniform(1e-3, 100.0);
+    m.kx = log_uniform(1e-2, 1000.0);
+    m.ky = log_uniform(1e-2, 1000.0);
+    m.nx = 3 + static_cast<int>(draw.uniform() * 40.0);
+    m.ny = 3 + static_cast<int>(draw.uniform() * 40.0);
+    s.wind.velocity.x = log_uniform(0.05, 5.0);
+    s.sim.dt = log_uniform(0.01, 0.5);
+    try {
+      validate(s);
+    } catch (const ConfigError&) {
+      continue;
+    }
+    ++accepted;
+    MeanderWind wind = make_meander(s, static_cast<std::uint64_t>(trial));
+    const double scale =
+        s.wind.velocity.x + std::sqrt(coloured_noise_variance({m.gain, m.damping, m.bandwidth}));
+    double cost = 0.0, largest = 0.0;
+    for (int k = 0; k < 2000 && cost < 2e6; ++k) {
+      wind.step(s.sim.dt);
+      cost += static_cast<double>(m.nx * m.ny) * wind.substeps();
+      for (int j = 0; j < wind.ny(); ++j) {
+        for (int i = 0; i < wind.nx(); ++i) {
+          ASSERT_TRUE(std::isfinite(wind.u(i, j)) && std::isfinite(wind.v(i, j)))
+              << "gain " << m.gain << " damping " << m.damping << " bandwidth " << m.bandwidth
+              << " kx " << m.kx << " ky " << m.ky << " nx " << m.nx << " ny " << m.ny
+              << " dt " << s.sim.dt << " at step " << k;
+          largest = std::max({largest, std::abs(wind.u(i, j)), std::abs(wind.v(i, j))});
+        }
+      }
+    }
+    // the edges reach 7 standard deviations about once in 10^11 draws
+    EXPECT_LT(largest, 8.0 * scale) << "gain " << m.gain << " bandwidth " << m.bandwidth;
+  }
+  EXPECT_GE(accepted, 30);
+}
+
 TEST(MeanderWind, BadKeysAreRefusedNamingThem) {
   Scenario s;
   const auto message = [&](const char* key, double value) {

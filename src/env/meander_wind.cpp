@@ -212,6 +212,14 @@ double MeanderWind::max_substep(const MeanderParams& params, const WindRegion& r
                 v_max * v_max / diff_y);
 }
 
+std::pair<double, double> MeanderWind::max_speeds(const MeanderParams& params,
+                                                  const WindRegion& region) {
+  const double dx = (region.x_max - region.x_min) / (params.nx - 1);
+  const double dy = (region.y_max - region.y_min) / (params.ny - 1);
+  // 2 D / d with D = K / 2
+  return {params.kx / dx, params.ky / dy};
+}
+
 void MeanderWind::step(double dt) {
   // the boundary: the corner noise advanced exactly over dt, the edges linear between corners
   if (dt != transition_dt_) {

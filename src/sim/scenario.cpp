@@ -378,6 +378,50 @@ void for_each_value(const Scenario& scenario, const std::function<void(const Fie
   read_fields(scenario, reader);
 }
 
+namespace {
+
+// why: the grid's update must stay bounded for every accepted combination of the keys (issue
+// 22, G1: gain 10, bandwidth 100, damping 10 made the wind NaN). Both bounds of docs/model.md
+// section 3.1 are checked at the mean wind plus 4 standard deviations of the boundary noise: the
+// cell Peclet bound, without which centred differences overshoot and grow, and the substeps
+// the time step needs, which bound the cost
+void check_meander(const WindParams& wind, const WindRegion& region, double dt) {
+  const MeanderParams& m = wind.meander;
+  const double spread = 4.0 * std::sqrt(coloured_noise_variance({m.gain, m.damping, m.bandwidth}));
+  const double u_max = std::abs(wind.velocity.x) + spread;
+  const double v_max = std::abs(wind.velocity.y) + spread;
+  const std::string noise = "wind.meander_gain, wind.meander_damping, wind.meander_bandwidth";
+  const auto [u_bound, v_bound] = MeanderWind::max_speeds(m, region);
+  const bool inside = m.gain > 0.0 && m.nx >= 3 && m.ny >= 3;  // else no node is computed
+  const auto unstable = [&](const char* axis, const std::string& keys, double speed,
+                            double bound) {
+    throw ConfigError(
+        keys + ": the meandering wind would be unstable: its speed along " + axis +
+        " reaches " + bound_text(speed) + " m/s (the mean wind plus 4 standard deviations of the "
+        "boundary noise, 4 G sqrt(omega / (4 zeta)) = " + bound_text(spread) +
+        " m/s), above the " + bound_text(bound) + " m/s its grid carries (2 D / spacing, D = K / "
+        "2; docs/model.md section 3.1): lower the gain or the bandwidth, raise the damping or " +
+        "the diffusivity, or add nodes");
+  };
+  if (inside && !(u_max <= u_bound)) {
+    unstable("x", noise + ", wind.vx, wind.meander_kx, wind.meander_nx", u_max, u_bound);
+  }
+  if (inside && !(v_max <= v_bound)) {
+    unstable("y", noise + ", wind.vy, wind.meander_ky, wind.meander_ny", v_max, v_bound);
+  }
+  const double substeps = std::ceil(dt / MeanderWind::max_substep(m, region, u_max, v_max));
+  if (!(substeps <= kMaxWindSubsteps)) {
+    throw ConfigError(
+        "wind.meander_kx, wind.meander_ky, wind.meander_nx, wind.meander_ny, "
+        "wind.meander_gain: the meandering wind's grid would need " +
+        bound_text(substeps) + " substeps per step of sim.dt to stay stable (at most " +
+        bound_text(kMaxWindSubsteps) +
+        "): lower the diffusivities, the node counts, the gain or sim.dt");
+  }
+}
+
+}  // namespace
+
 void validate(const Scenario& scenario) {
   // every key within its own range
   Validator validator;
@@ -437,25 +481,7 @@ void validate(const Scenario& scenario) {
                   " m/s and the arena's length: raise wind.vx or set sim.warmup)"
             : "");
   steps("supervisor.timeout", scenario.supervisor.timeout, "");
-  if (scenario.wind.model == WindModel::kMeander) {
-    // why: the grid's substeps grow as K / spacing^2 and speed^2 (docs/model.md section 3.1);
-    // counted at the mean wind plus 4 standard deviations of the boundary noise
-    const MeanderParams& m = scenario.wind.meander;
-    const double spread =
-        4.0 * std::sqrt(coloured_noise_variance({m.gain, m.damping, m.bandwidth}));
-    const Vec3& mean = scenario.wind.velocity;
-    const double substeps =
-        std::ceil(dt / MeanderWind::max_substep(m, wind_region(a), std::abs(mean.x) + spread,
-                                                std::abs(mean.y) + spread));
-    if (!(substeps <= kMaxWindSubsteps)) {
-      throw ConfigError(
-          "wind.meander_kx, wind.meander_ky, wind.meander_nx, wind.meander_ny, "
-          "wind.meander_gain: the meandering wind's grid would need " +
-          bound_text(substeps) + " substeps per step of sim.dt to stay stable (at most " +
-          bound_text(kMaxWindSubsteps) +
-          "): lower the diffusivities, the node counts, the gain or sim.dt");
-    }
-  }
+  if (scenario.wind.model == WindModel::kMeander) check_meander(scenario.wind, wind_region(a), dt);
   const double per_step = scenario.plume.release_rate * dt;
   if (per_step > kMaxReleasePerStep) {
     throw ConfigError("plume.release_rate: must release at most " + bound_text(kMaxReleasePerStep) +

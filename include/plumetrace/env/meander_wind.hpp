@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -88,6 +89,13 @@ class MeanderWind final : public WindField {
   /// and |v| <= v_max (m/s), by the von Neumann bound of docs/model.md section 3.1.
   static double max_substep(const MeanderParams& params, const WindRegion& region, double u_max,
                             double v_max);
+
+  /// The fastest |u| (first) and |v| (second), in m/s, that the centred differences carry
+  /// without overshoot: the cell Péclet bound |u| dx <= 2 D_x, |v| dy <= 2 D_y (D = K / 2), under
+  /// which every substep makes each inside node a weighted mean of its old neighbourhood, so no
+  /// value outgrows the edges (docs/model.md section 3.1).
+  static std::pair<double, double> max_speeds(const MeanderParams& params,
+                                              const WindRegion& region);
 
  private:
   std::size_t index(int i, int j) const {

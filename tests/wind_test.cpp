@@ -746,8 +746,8 @@ TEST(MeanderWind, EveryAcceptedCombinationStaysFinite) {
         for (int i = 0; i < wind.nx(); ++i) {
           ASSERT_TRUE(std::isfinite(wind.u(i, j)) && std::isfinite(wind.v(i, j)))
               << "gain " << m.gain << " damping " << m.damping << " bandwidth " << m.bandwidth
-              << " kx " << m.kx << " ky " << m.ky << " nx " << m.nx << " ny " << m.ny
-              << " dt " << s.sim.dt << " at step " << k;
+              << " kx " << m.kx << " ky " << m.ky << " nx " << m.nx << " ny " << m.ny << " dt "
+              << s.sim.dt << " at step " << k;
           largest = std::max({largest, std::abs(wind.u(i, j)), std::abs(wind.v(i, j))});
         }
       }

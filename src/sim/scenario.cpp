@@ -393,13 +393,14 @@ void check_meander(const WindParams& wind, const WindRegion& region, double dt) 
   const std::string noise = "wind.meander_gain, wind.meander_damping, wind.meander_bandwidth";
   const auto [u_bound, v_bound] = MeanderWind::max_speeds(m, region);
   const bool inside = m.gain > 0.0 && m.nx >= 3 && m.ny >= 3;  // else no node is computed
-  const auto unstable = [&](const char* axis, const std::string& keys, double speed,
-                            double bound) {
+  const auto unstable = [&](const char* axis, const std::string& keys, double speed, double bound) {
     throw ConfigError(
-        keys + ": the meandering wind would be unstable: its speed along " + axis +
-        " reaches " + bound_text(speed) + " m/s (the mean wind plus 4 standard deviations of the "
-        "boundary noise, 4 G sqrt(omega / (4 zeta)) = " + bound_text(spread) +
-        " m/s), above the " + bound_text(bound) + " m/s its grid carries (2 D / spacing, D = K / "
+        keys + ": the meandering wind would be unstable: its speed along " + axis + " reaches " +
+        bound_text(speed) +
+        " m/s (the mean wind plus 4 standard deviations of the "
+        "boundary noise, 4 G sqrt(omega / (4 zeta)) = " +
+        bound_text(spread) + " m/s), above the " + bound_text(bound) +
+        " m/s its grid carries (2 D / spacing, D = K / "
         "2; docs/model.md section 3.1): lower the gain or the bandwidth, raise the damping or " +
         "the diffusivity, or add nodes");
   };

@@ -1,9 +1,9 @@
 #pragma once
 
 #include <array>
-#include <utility>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "plumetrace/core/geometry.hpp"

@@ -72,16 +72,19 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
 }
 
 int draw_report(const std::string& out, const std::string& module,
-                const std::vector<std::string>& args) {
+                const std::vector<std::string>& args, bool is_file) {
   const std::string python_path = data_dir() + "/python";
   // what the report prints follows what was printed here
   std::fflush(nullptr);
-  std::vector<std::string> argv{kPython, "-m", module, out};
+  std::vector<std::string> argv{kPython, "-P"};
+  if (!is_file) argv.emplace_back("-m");
+  argv.insert(argv.end(), {module, out});
   argv.insert(argv.end(), args.begin(), args.end());
   const int rc = run_program(argv, {"PYTHONPATH=" + python_path});
   if (rc != 0) {
     std::string command = "PYTHONPATH=" + shell_word(python_path) + " " + shell_word(kPython) +
-                          " -m " + module + " " + shell_word(out);
+                          (is_file ? " -P " : " -P -m ") + shell_word(module) + " " +
+                          shell_word(out);
     for (const auto& a : args) command += " " + shell_word(a);
     std::fprintf(stderr,
                  "plumetrace: error: drawing the report failed (%s); the results are kept in "

@@ -27,10 +27,12 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
                      const std::vector<IncompletePoint>& incomplete, const std::string& store,
                      const std::string& extra);
 
-/// Draws report.html and report.md from the results in OUT (python -m MODULE OUT ARGS...; the
-/// paper's report by default); returns 0, or kIoFailure after saying that it failed.
+/// Draws report.html and report.md from the results in OUT (python -P -m MODULE OUT ARGS...;
+/// the paper's report by default; with `is_file`, MODULE is a script: python -P FILE OUT ARGS);
+/// returns 0, or kIoFailure after saying that it failed. why: -P keeps the current folder off
+/// the module path, so that a file there named like a module is never run (issue 22, G4).
 int draw_report(const std::string& out, const std::string& module = "plumetrace.report",
-                const std::vector<std::string>& args = {});
+                const std::vector<std::string>& args = {}, bool is_file = false);
 
 /// `text` as one word of a POSIX shell, for commands a user may paste.
 std::string shell_word(const std::string& text);

@@ -29,15 +29,15 @@ int exit_code(const std::exception_ptr& error) {
   }
 }
 
-int report_error(const std::exception_ptr& error, const std::string& prefix) {
+int report_error(const std::exception_ptr& error, const std::string& prefix,
+                 const std::string& memory_advice) {
   const int code = exit_code(error);
   try {
     std::rethrow_exception(error);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr,
-                 "plumetrace: error: %sout of memory; results already stored are kept (lower "
-                 "--threads, plume.capacity or the grid, or raise the memory limit)\n",
-                 prefix.c_str());
+                 "plumetrace: error: %sout of memory; results already stored are kept (%s)\n",
+                 prefix.c_str(), memory_advice.c_str());
   } catch (const std::exception& e) {
     if (code == kInternalError) {
       std::fprintf(stderr, "plumetrace: internal error: %s%s (please report it)\n", prefix.c_str(),

@@ -20,7 +20,13 @@ inline constexpr int kInternalError = 1;
 /// kInternalError for anything else.
 int exit_code(const std::exception_ptr& error);
 
+/// The advice for out of memory when the command gives none.
+inline constexpr const char* kMemoryAdvice =
+    "lower --threads, plume.capacity or the grid, or raise the memory limit";
+
 /// Prints "plumetrace: error: " + `prefix` + the error's message on stderr; returns exit_code.
-int report_error(const std::exception_ptr& error, const std::string& prefix = "");
+/// Out of memory is said with `memory_advice`, what the command lets one change.
+int report_error(const std::exception_ptr& error, const std::string& prefix = "",
+                 const std::string& memory_advice = kMemoryAdvice);
 
 }  // namespace plumetrace::cli

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "campaign_run.hpp"
 #include "cli.hpp"
 #include "commands/commands.hpp"
 #include "errors.hpp"
@@ -16,10 +17,11 @@ namespace plumetrace::cli {
 
 namespace {
 
-// the command line as summary.json records it
+// the command line as summary.json records it, each word quoted for a POSIX shell (issue 22,
+// G20), so that it can be pasted back
 std::string command_line(int argc, char** argv) {
-  std::string line;
-  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(i ? argv[i] : "plumetrace");
+  std::string line = "plumetrace";
+  for (int i = 1; i < argc; ++i) line += " " + shell_word(argv[i]);
   return line;
 }
 
@@ -64,9 +66,11 @@ int main(int argc, char** argv) {
     return report_error(std::current_exception());
   }
 
+  const Command* chosen = nullptr;
   try {
     for (const auto& [sub, command] : commands) {
       if (!*sub) continue;
+      chosen = command;
       if (!command->runs_on_ranks() && launched_ranks() > 1) {
         throw ConfigError(
             "only plumetrace sweep runs across the processes of an MPI job; run this command "
@@ -75,7 +79,8 @@ int main(int argc, char** argv) {
       return command->run();
     }
   } catch (...) {
-    return report_error(std::current_exception());
+    return report_error(std::current_exception(), "",
+                        chosen ? chosen->memory_advice() : kMemoryAdvice);
   }
   return 0;
 }

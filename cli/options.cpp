@@ -132,6 +132,7 @@ std::vector<ExpandedSweep> StoredSweepOptions::sweeps() const {
   for (const auto& f : sweep_files) {
     result.push_back(expand_sweep(read_sweep_file(f), parse_sets(sets)));
   }
+  check_campaign(result, runs);
   return result;
 }
 

@@ -724,7 +724,7 @@ py::list export_sweep_store(const py::object& spec, const py::list& overrides,
   }
   const std::vector<pt::ExpandedSweep> sweeps = {
       pt::expand_sweep(sweep_def_of(spec), settings_of(std::nullopt, overrides))};
-  pt::check_campaign_size(sweeps, runs);
+  pt::check_campaign(sweeps, runs);
   std::vector<pt::IncompletePoint> incomplete;
   {
     py::gil_scoped_release release;

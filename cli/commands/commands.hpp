@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "errors.hpp"
 #include "options.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/sim/probe.hpp"
@@ -23,6 +24,10 @@ class Command {
   virtual int run() = 0;
   /// Whether it may run across the processes of an MPI job.
   virtual bool runs_on_ranks() const { return false; }
+  /// What to change when it runs out of memory, for the message (issue 22, G8).
+  virtual std::string memory_advice() const {
+    return "lower plume.capacity or plume.release_rate, or raise the memory limit";
+  }
 };
 
 /// `plumetrace run [SCENARIO] ...`: one run, its metrics, and its trace or view if asked.
@@ -48,6 +53,7 @@ struct ViewCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return "the trace is held in memory with its page: lower --max-frames and --max-snapshots, or view a shorter trace"; }
 };
 
 /// `plumetrace probe [SCENARIO] --points ...`: the plume alone, sampled at points.
@@ -92,6 +98,7 @@ struct SweepCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return kMemoryAdvice; }
   bool runs_on_ranks() const override { return true; }
 };
 
@@ -101,6 +108,7 @@ struct ExportCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return "the store's runs are read into memory: export on a machine with more memory"; }
 };
 
 /// `plumetrace report SWEEP.toml... --store FILE [--out DIR]`: the report of any sweep.
@@ -109,6 +117,7 @@ struct ReportCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return "the store's runs are read into memory: report on a machine with more memory"; }
 };
 
 /// `plumetrace merge PART... --store FILE`: the shards' stores into one.
@@ -118,6 +127,7 @@ struct MergeCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return "the parts' runs are read into memory: merge fewer parts at a time"; }
 };
 
 /// `plumetrace reproduce ...`: the paper's study (studies/lochmatter2008) and its report.
@@ -132,6 +142,7 @@ struct ReproduceCommand final : Command {
   explicit ReproduceCommand(std::string line) : command_line(std::move(line)) {}
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return kMemoryAdvice; }
 };
 
 /// `plumetrace sensitivity ...`: the study's sets under every sensitivity combination.
@@ -141,6 +152,7 @@ struct SensitivityCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return kMemoryAdvice; }
 };
 
 /// `plumetrace study FOLDER ...`: a study's sweep files as one campaign, its exports and report.
@@ -152,6 +164,7 @@ struct StudyCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
+  std::string memory_advice() const override { return kMemoryAdvice; }
 };
 
 }  // namespace plumetrace::cli

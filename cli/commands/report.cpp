@@ -3,6 +3,7 @@
 
 #include "campaign_run.hpp"
 #include "commands.hpp"
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/io/exports.hpp"
@@ -26,7 +27,7 @@ CLI::App* ReportCommand::add(CLI::App& app) {
 int ReportCommand::run() {
   const std::vector<ExpandedSweep> sweeps = from.sweeps();
   const auto& [sweep_files, store, out, runs, sets] = from;
-  check_campaign_size(sweeps, runs);
+  check_campaign(sweeps, runs);
   const std::vector<RunRow> rows = read_campaign_rows(store, sweeps);
   const auto incomplete = incomplete_points(sweeps, rows, runs);
   const std::string options = extra_options(sets, runs);
@@ -43,7 +44,7 @@ int ReportCommand::run() {
   }
   const std::filesystem::path parent = std::filesystem::path(store).parent_path();
   const std::string folder = !out.empty() ? out : parent.empty() ? "." : parent.string();
-  std::filesystem::create_directories(folder);
+  make_output_folder(folder, out.empty() ? "the folder of --store" : "--out");
   write_exports(folder, sweeps, rows, runs);
   warn_incomplete(sweeps, incomplete, store, options);
 

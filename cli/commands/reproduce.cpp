@@ -46,14 +46,18 @@ int ReproduceCommand::run() {
   std::optional<std::vector<std::string>> others;
   if (!presets.empty()) {
     others.emplace();
-    std::stringstream list(presets);
-    for (std::string name; presets != "none" && std::getline(list, name, ',');) {
-      if (!name.empty()) others->push_back(name);
+    // why: "a,,b" or a trailing comma is a typo, not a request for fewer readings (G13)
+    for (std::size_t start = 0; presets != "none" && start <= presets.size();) {
+      const std::size_t comma = std::min(presets.find(',', start), presets.size());
+      const std::string name = presets.substr(start, comma - start);
+      if (name.empty()) throw ConfigError("--presets: empty name (in '" + presets + "')");
+      others->push_back(name);
+      start = comma + 1;
     }
   }
   const Reproduction plan = plan_reproduction(study, preset, others);
-  check_campaign_size(plan.sweeps, runs);
-  std::filesystem::create_directories(flags.out);
+  check_campaign(plan.sweeps, runs);
+  make_output_folder(flags.out, "--out");
   Store store(flags.out + "/results.sqlite", plan.sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress("reproduce", plan.sweeps, store, runs, flags, result)) {

@@ -24,8 +24,8 @@ CLI::App* SensitivityCommand::add(CLI::App& app) {
 int SensitivityCommand::run() {
   const Study study = read_study(flags.study_file());
   const std::vector<ExpandedSweep> sweeps = sensitivity_campaign(study, runs);
-  check_campaign_size(sweeps, runs);
-  std::filesystem::create_directories(flags.out);
+  check_campaign(sweeps, runs);
+  make_output_folder(flags.out, "--out");
   Store store(flags.out + "/sensitivity.sqlite", sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress("sensitivity", sweeps, store, runs, flags, result)) return kInterrupted;

@@ -39,9 +39,10 @@ int StudyCommand::run() {
   const StudyFile study = read_study_file(folder);
   std::vector<ExpandedSweep> sweeps;
   for (const auto& file : study.sets) sweeps.push_back(expand_sweep(read_sweep_file(file), {}));
-  check_campaign_size(sweeps, runs);
-  if (out_option->count() == 0) flags.out = "out/" + study.name;
-  std::filesystem::create_directories(flags.out);
+  check_campaign(sweeps, runs);
+  // why: the name comes from a file; "../../escaped" must not lead out of out/ (issue 22, G3)
+  if (out_option->count() == 0) flags.out = default_output_folder(study.name, study.file);
+  make_output_folder(flags.out, out_option->count() ? "--out" : study.file + ": name");
   Store store(flags.out + "/results.sqlite", sweeps, version(), flags.fresh);
   CampaignResult result;
   if (!run_with_progress(study.name, sweeps, store, runs, flags, result)) return kInterrupted;
@@ -50,7 +51,7 @@ int StudyCommand::run() {
               study.name.c_str(), static_cast<long long>(result.total),
               static_cast<long long>(result.computed), result.elapsed, flags.out.c_str());
   if (study.report.empty()) return 0;
-  if (const int rc = draw_report(flags.out, study.report)) return rc;
+  if (const int rc = draw_report(flags.out, study.report, {}, study.report_is_file)) return rc;
   std::printf("report: %s/report.html (and report.md)\n", flags.out.c_str());
   return 0;
 }

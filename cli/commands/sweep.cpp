@@ -28,35 +28,15 @@ struct SweepPlan {
   std::string store_path;
 };
 
-// the most characters of a sweep name used as a folder name
-constexpr std::size_t kMaxFolderName = 100;
-
-// whether a sweep name can be the folder of its exports under out/ as it is: letters, digits,
-// '_', '-' and '.', not first
-bool folder_name(const std::string& name) {
-  const auto plain = [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-  };
-  return !name.empty() && name.size() <= kMaxFolderName && name[0] != '.' && name[0] != '-' &&
-         std::all_of(name.begin(), name.end(), plain);
-}
-
 SweepPlan plan_sweep(const SweepCommand& cmd) {
   SweepPlan plan;
   plan.shard = cmd.shard.empty() ? Shard{} : parse_shard(cmd.shard);
   const SweepDef def = read_sweep_file(cmd.file);
   plan.name = def.name;
   plan.sweeps = {expand_sweep(def, parse_sets(cmd.sets))};
-  check_campaign_size(plan.sweeps, cmd.runs);
+  check_campaign(plan.sweeps, cmd.runs);
   // why: the name comes from a file; "../../etc/evil" must not lead out of out/ (issue 13, F12)
-  if (cmd.out.empty() && !folder_name(def.name)) {
-    throw ConfigError(cmd.file + ": name: '" + def.name +
-                      "' cannot be the exports' folder under out/ (letters, digits, '_', '-' and "
-                      "'.', not first, at most " +
-                      std::to_string(kMaxFolderName) +
-                      " characters); rename the sweep or give --out");
-  }
-  plan.out = cmd.out.empty() ? "out/" + def.name : cmd.out;
+  plan.out = cmd.out.empty() ? default_output_folder(def.name, cmd.file) : cmd.out;
   if (!cmd.store.empty()) {
     plan.store_path = cmd.store;
   } else if (plan.shard.count > 1) {
@@ -70,9 +50,9 @@ SweepPlan plan_sweep(const SweepCommand& cmd) {
 
 std::unique_ptr<Store> open_sweep_store(const SweepPlan& plan, const SweepCommand& cmd) {
   // the exports' folder first, so that one that cannot be made stops the sweep before it runs
-  if (plan.shard.count <= 1) std::filesystem::create_directories(plan.out);
+  if (plan.shard.count <= 1) make_output_folder(plan.out, cmd.out.empty() ? "out/NAME" : "--out");
   const auto folder = std::filesystem::path(plan.store_path).parent_path();
-  if (!folder.empty()) std::filesystem::create_directories(folder);
+  if (!folder.empty()) make_output_folder(folder.string(), "the folder of --store");
   return std::make_unique<Store>(plan.store_path, plan.sweeps, version(), cmd.fresh);
 }
 

@@ -1,6 +1,21 @@
 #include "plumetrace/agent/controller.hpp"
 
+#include <string>
+
+#include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
+
 namespace plumetrace {
+
+void check_state_name(std::string_view name) {
+  if (name.empty() || name.size() > kMaxStateName) {
+    throw ConfigError("a controller's state name must have 1 to " + std::to_string(kMaxStateName) +
+                      " bytes (got " + std::to_string(name.size()) + ")");
+  }
+  if (control_character(name) != std::string_view::npos) {
+    throw ConfigError("a controller's state name holds a control character");
+  }
+}
 
 int guess_plume_side(double surge_heading, double upwind_now, Rng& rng) {
   const double error = wrap_angle(surge_heading - upwind_now);

@@ -4,6 +4,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -14,7 +17,17 @@
 
 namespace plumetrace {
 
-OutputFile::OutputFile(std::string path) : path_(std::move(path)), part_(path_ + ".part") {
+namespace {
+
+// a temporary name beside `path` that no other writer uses: this process's id and a count
+std::string part_name(const std::string& path) {
+  static std::atomic<unsigned long> count{0};
+  return path + "." + std::to_string(::getpid()) + "-" + std::to_string(count++) + ".part";
+}
+
+}  // namespace
+
+OutputFile::OutputFile(std::string path) : path_(std::move(path)), part_(part_name(path_)) {
   out_.open(part_, std::ios::binary | std::ios::trunc);
   if (!out_) throw IoError("cannot write '" + path_ + "'");
   out_.precision(17);
@@ -46,7 +59,8 @@ void OutputFile::commit() {
 // why: the type is checked on the open descriptor, opened without blocking, so that a FIFO or a
 // device named as an input neither blocks open() or read() for ever nor is swapped in between
 // a check and the open (issue 13, F8)
-bool read_regular_file(const std::string& path, std::string& text, std::string& why) {
+bool read_regular_file(const std::string& path, std::string& text, std::string& why,
+                       std::uint64_t max_bytes) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     why = std::strerror(errno);
@@ -65,6 +79,14 @@ bool read_regular_file(const std::string& path, std::string& text, std::string& 
     why = S_ISDIR(st.st_mode) ? "a folder, not a file" : "not a regular file";
     return false;
   }
+  const auto too_large = [&](std::uint64_t size) {
+    why = "larger than " + std::to_string(max_bytes) + " bytes (" + std::to_string(size) +
+          "): not an input file of plumetrace";
+    return false;
+  };
+  if (static_cast<std::uint64_t>(st.st_size) > max_bytes) {
+    return too_large(static_cast<std::uint64_t>(st.st_size));
+  }
   text.clear();
   char buffer[1 << 16];
   for (;;) {
@@ -76,7 +98,73 @@ bool read_regular_file(const std::string& path, std::string& text, std::string& 
       return false;
     }
     text.append(buffer, static_cast<std::size_t>(n));
+    // why: a file that grows while it is read (a log) is bounded too
+    if (text.size() > max_bytes) return too_large(text.size());
   }
+}
+
+bool is_folder_name(std::string_view name) {
+  const auto plain = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  };
+  return !name.empty() && name.size() <= kMaxFolderName && name[0] != '.' && name[0] != '-' &&
+         std::all_of(name.begin(), name.end(), plain);
+}
+
+std::string default_output_folder(const std::string& name, const std::string& file,
+                                  const std::string& key) {
+  if (!is_folder_name(name)) {
+    throw ConfigError(file + ": " + key + ": '" + name +
+                      "' cannot be the outputs' folder under out/ (letters, digits, '_', '-' and "
+                      "'.', not first, at most " +
+                      std::to_string(kMaxFolderName) +
+                      " characters); rename it or give --out");
+  }
+  return "out/" + name;
+}
+
+void make_output_folder(const std::string& path, const std::string& what) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw ConfigError(what + ": must not be empty");
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status) && !fs::is_directory(status)) {
+    throw ConfigError(what + ": '" + path + "' is a file, not a folder");
+  }
+  fs::create_directories(path, ec);
+  if (ec) throw IoError("cannot create the folder '" + path + "' (" + what + "): " + ec.message());
+  // a file created and removed again: rights, a read-only disk or /proc refuse it here
+  const std::string probe = part_name(path + "/.plumetrace-probe");
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    throw IoError("cannot write in the folder '" + path + "' (" + what +
+                  "): " + std::strerror(errno));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+std::size_t control_character(std::string_view text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) return i;
+    // C1 controls, U+0080-U+009F: 0xC2 0x80-0x9F in UTF-8
+    if (c == 0xc2 && i + 1 < text.size()) {
+      const auto d = static_cast<unsigned char>(text[i + 1]);
+      if (d >= 0x80 && d <= 0x9f) return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
+void check_printable(std::string_view text, const std::string& where, const std::string& key) {
+  const std::size_t at = control_character(text);
+  if (at == std::string_view::npos) return;
+  char code[8];
+  std::snprintf(code, sizeof code, "0x%02x", static_cast<unsigned char>(text[at]));
+  throw ConfigError(where + ": " + key + ": holds a control character (" + code +
+                    " at byte " + std::to_string(at) +
+                    "); names and titles are printed on terminals and written into CSV and HTML");
 }
 
 std::string_view version() { return kVersion; }

@@ -45,7 +45,21 @@ std::vector<std::vector<int>> plume_indices(const std::vector<ExpandedSweep>& sw
   return out;
 }
 
-std::int64_t check_campaign_size(const std::vector<ExpandedSweep>& sweeps, int runs_override) {
+std::int64_t check_campaign(const std::vector<ExpandedSweep>& sweeps, int runs_override) {
+  // why: a store keys its runs by sweep name; one name twice exported every run twice, and two
+  // files of one name failed inside the store (issue 22, G10)
+  std::map<std::string, const SweepDef*> by_name;
+  for (const auto& s : sweeps) {
+    const auto [it, added] = by_name.try_emplace(s.def.name, &s.def);
+    if (added) continue;
+    const std::string first = it->second->file.empty() ? "(given)" : it->second->file;
+    const std::string second = s.def.file.empty() ? "(given)" : s.def.file;
+    throw ConfigError(first == second
+                          ? "sweep file '" + first + "' is given twice in one campaign"
+                          : "sweep files '" + first + "' and '" + second +
+                                "' both name their sweep '" + s.def.name +
+                                "': the sweeps of one campaign (and store) need distinct names");
+  }
   std::int64_t total = 0;
   for (const auto& s : sweeps) {
     // why: at most kMaxGridPoints points times at most 2^31 runs: no overflow
@@ -68,7 +82,7 @@ std::int64_t check_campaign_size(const std::vector<ExpandedSweep>& sweeps, int r
 std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
                                   const std::set<RunKey>& done, int runs_override,
                                   const Shard& shard) {
-  check_campaign_size(sweeps, runs_override);
+  check_campaign(sweeps, runs_override);
   const auto plumes = shard.count > 1 ? plume_indices(sweeps) : std::vector<std::vector<int>>{};
   std::vector<RunTask> tasks;
   for (std::size_t s = 0; s < sweeps.size(); ++s) {

@@ -1743,16 +1743,17 @@ MergeReport merge_stores(const std::vector<std::string>& parts, const std::strin
     }
   }
   const std::string& definition = contents.front().info.definition;
-  // an empty file at `out` (a merge killed early) is a new store, removed again on failure
-  bool existed = false;
-  if (std::filesystem::exists(out)) {
+  // an empty file at `out` (a merge killed early) is a new store; only a file this merge
+  // created is removed again on failure (issue 22, G2: a 1-byte notes.txt given as --store was
+  // taken for a blank store and deleted)
+  const bool existed = std::filesystem::exists(out);
+  if (existed) {
     for (const auto& p : parts) {
       if (std::filesystem::equivalent(out, p)) {
         throw StoreError("merge: the --store '" + out + "' is also given as a part");
       }
     }
-    existed = !is_blank(out);
-    if (existed) {
+    if (!is_blank(out)) {
       const StoreInfo held = read_store_info(out);
       if (held.definition != definition || held.version != version()) {
         throw StoreError("merge: the --store '" + out +

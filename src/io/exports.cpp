@@ -1,3 +1,4 @@
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/io/exports.hpp"
 
 #include <algorithm>
@@ -80,7 +81,7 @@ std::vector<IncompletePoint> export_store(const std::string& store,
                                           const std::vector<ExpandedSweep>& sweeps,
                                           const std::string& out, int runs_override) {
   const auto rows = read_campaign_rows(store, sweeps);
-  std::filesystem::create_directories(out);
+  make_output_folder(out, "--out");
   write_exports(out, sweeps, rows, runs_override);
   return incomplete_points(sweeps, rows, runs_override);
 }

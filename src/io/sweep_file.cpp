@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/toml_input.hpp"
 
@@ -88,6 +89,10 @@ void check_sweep_def(const SweepDef& def, const std::string& where) {
     }
   }
   if (def.name.empty()) fail("missing name = \"...\"");
+  // why: names, titles and labels reach terminals, CSV and HTML (issue 22, G14)
+  check_printable(def.name, where, "name");
+  check_printable(def.title, where, "title");
+  for (const auto& axis : def.axes) check_printable(axis.label, where, "axis " + axis.key + ": label");
   if (def.axes.empty()) fail("no [[axis]]: a sweep varies at least one key");
   // unknown axis keys and values of the wrong type are found here, naming the axis
   Scenario probe;

@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "plumetrace/agent/controller.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/io/json_util.hpp"
 #include "plumetrace/io/scenario_io.hpp"
@@ -282,6 +283,17 @@ void read_steps(const json& st, int format, const std::string& path, RecordedRun
   if (n == 0) throw ConfigError("trace '" + path + "': no steps");
   std::vector<std::string> names;
   if (format >= 2) names = st.at("state_names").get<std::vector<std::string>>();
+  // why: each step holds its state's name; a 1 MB name took 4.8 GB to view (issue 22, G8)
+  const auto check_name = [&](const std::string& name, const std::string& field) {
+    try {
+      check_state_name(name);
+    } catch (const ConfigError& e) {
+      throw ConfigError("trace '" + path + "': " + field + ": " + e.what());
+    }
+  };
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    check_name(names[k], "steps.state_names[" + std::to_string(k) + "]");
+  }
   const Vec2 unrecorded = unrecorded_true_wind(run.scenario.wind);
   run.trace.steps.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -289,15 +301,24 @@ void read_steps(const json& st, int format, const std::string& path, RecordedRun
     row += std::to_string(i);
     row += ']';
     TraceStep& s = run.trace.steps[i];
-    s.time = st["time"][i].get<double>();
-    s.pose = {st["x"][i].get<double>(), st["y"][i].get<double>(), st["heading"][i].get<double>()};
-    s.odometer = st["odometer"][i].get<double>();
+    // why: a number too large for a double parses as infinity; drawn, it overflows the page
+    const auto finite = [&](const char* column) {
+      const double v = st[column][i].get<double>();
+      if (!std::isfinite(v)) {
+        throw ConfigError("trace '" + path + "': steps." + column + row + " is not finite");
+      }
+      return v;
+    };
+    s.time = finite("time");
+    s.pose = {finite("x"), finite("y"), finite("heading")};
+    s.odometer = finite("odometer");
     if (format >= 2) {
       if (names.empty()) throw ConfigError("trace '" + path + "': steps.state_names is empty");
       s.state = names[trace_integer<std::size_t>(st["state"][i], path, "steps.state" + row, 0,
                                                  names.size() - 1)];
     } else {
       s.state = st["state"][i].get<std::string>();
+      check_name(s.state, "steps.state" + row);
     }
     const json& odor = st["odor"][i];
     s.odor = odor.is_boolean() ? odor.get<bool>()
@@ -346,10 +367,13 @@ void read_snapshots_2(const json& snapshots, const json& encoding, const std::st
   for (std::size_t c = 0; c < kFilamentColumns.size(); ++c) {
     const json& e = encoding.at(kFilamentColumns[c].first);
     codes[c] = {e.at("origin").get<double>(), e.at("unit").get<double>()};
+    // why: every code must decode to a finite number; unit 1e308 drew coordinates of infinity
+    // (issue 22, G17)
     if (!std::isfinite(codes[c].origin) || !(codes[c].unit > 0.0) ||
-        !std::isfinite(codes[c].unit)) {
+        !std::isfinite(codes[c].value(0)) || !std::isfinite(codes[c].value(0xffff))) {
       throw ConfigError("trace '" + path + "': snapshot_encoding." + kFilamentColumns[c].first +
-                        " must have a finite origin and a positive unit");
+                        " must have a finite origin and a positive unit whose 65536 codes decode "
+                        "to finite numbers");
     }
   }
   std::vector<std::uint8_t> bytes;
@@ -385,7 +409,7 @@ RecordedRun read_trace(const std::string& path) {
                       "(plumetrace run --trace run.json)");
   }
   std::string text, why;
-  if (!read_regular_file(path, text, why)) {
+  if (!read_regular_file(path, text, why, kMaxTraceBytes)) {
     throw IoError("cannot read trace '" + path + "': " + why);
   }
   RecordedRun run;
@@ -440,6 +464,9 @@ RecordedRun read_trace(const std::string& path) {
       grid.y0 = g.at("y0").get<double>();
       grid.dy = g.at("dy").get<double>();
       grid.z = g.at("z").get<double>();
+      for (const double v : {grid.x0, grid.dx, grid.y0, grid.dy, grid.z}) {
+        if (!std::isfinite(v)) throw ConfigError("wind_grid: x0, dx, y0, dy and z must be finite");
+      }
       // why: a viewer loops over the nodes; a damaged count must not make it loop for ever
       grid.nx = trace_integer<int>(g.at("nx"), path, "wind_grid.nx", 0, 100000);
       grid.ny = trace_integer<int>(g.at("ny"), path, "wind_grid.ny", 0, 100000);

@@ -41,7 +41,10 @@ void TraceRecorder::operator()(const World& world) {
   row.time = world.time();
   row.pose = world.robot().pose;
   row.odometer = world.robot().odometer;
-  row.state = std::string(world.controller().state());
+  const std::string_view state = world.controller().state();
+  // why: a trace keeps every step's state; one name must not make it gigabytes (G8)
+  check_state_name(state);
+  row.state = std::string(state);
   row.odor = world.odor();
   row.concentration = world.concentration();
   row.wind_samples = world.time() > 0.0 ? sensor.samples() : 0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string_view>
 
 #include "plumetrace/agent/measurement.hpp"
@@ -22,6 +23,15 @@ class Controller {
   /// Number of times the plume was declared lost so far.
   virtual int losses() const = 0;
 };
+
+/// The longest state name a controller may report (bytes). why: traces store the name of every
+/// step, and the viewer copies it per frame: a 1 MB name made a 5.8 MB trace take 4.8 GB to view
+/// (issue 22, G8).
+inline constexpr std::size_t kMaxStateName = 64;
+
+/// Throws ConfigError saying why when `name` is not a state name: empty, longer than
+/// kMaxStateName, or holding a control character.
+void check_state_name(std::string_view name);
 
 /// Tracks the path length since the last odor detection; the robot starts in the plume.
 class LossTracker {

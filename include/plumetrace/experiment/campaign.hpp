@@ -30,13 +30,14 @@ std::string shard_text(const Shard& shard);
 /// campaign's distinct plumes, numbered in campaign order.
 std::vector<std::vector<int>> plume_indices(const std::vector<ExpandedSweep>& sweeps);
 
-/// The number of runs a campaign defines (points times runs per point, over its sweeps); throws
-/// ConfigError naming the sweep file (or the sweeps) and the count when it is above
-/// kMaxCampaignRuns. Call it before a store is opened: nothing is written then.
-std::int64_t check_campaign_size(const std::vector<ExpandedSweep>& sweeps, int runs_override);
+/// Checks a campaign before a store is opened (nothing is written then) and returns the number of
+/// runs it defines (points times runs per point, over its sweeps). Throws ConfigError naming
+/// both files when two of its sweeps share a name (a store keys runs by sweep name), and naming
+/// the sweep file (or the sweeps) and the count when it is above kMaxCampaignRuns.
+std::int64_t check_campaign(const std::vector<ExpandedSweep>& sweeps, int runs_override);
 
 /// The (sweep, point, trial) runs of a campaign (of one shard of it) that are not yet in
-/// `done`, in campaign order; checks the campaign's size first (check_campaign_size).
+/// `done`, in campaign order; checks the campaign first (check_campaign).
 std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
                                   const std::set<RunKey>& done, int runs_override,
                                   const Shard& shard = {});

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "plumetrace/io/results_io.hpp"
@@ -31,6 +32,9 @@ struct RecordedRun {
   std::string version;  ///< the plumetrace version that wrote the trace
   Trace trace;          ///< steps and filament snapshots
 };
+
+/// The largest trace file read (2 GiB): a run of 1e7 steps (kMaxSteps) with snapshots fits.
+inline constexpr std::uint64_t kMaxTraceBytes = 2ull << 30;
 
 /// Reads a trace written by write_trace as `.json`; throws IoError naming the file when it cannot
 /// be read, ConfigError when it is not a plumetrace JSON trace (a `.csv` trace carries no

@@ -25,6 +25,8 @@ if [[ $mode == test ]]; then
     libgtest-dev libbenchmark-dev
     python3-dev pybind11-dev python3-pytest python3-optuna python3-sklearn python3-hypothesis
     python3-pandas
+    # CITATION.cff read and checked against the CFF schema (tests/citation)
+    python3-yaml python3-jsonschema
     # `pip install .` offline (pyproject.toml, setup.py) and its test in a fresh venv
     python3-pip python3-venv python3-setuptools python3-wheel
     clang libfuzzer-14-dev

@@ -14,6 +14,7 @@ cmake --install "$build" --prefix "$prefix" >/dev/null
 test -f "$prefix/lib/cmake/plumetrace/plumetraceConfig.cmake"
 test -f "$prefix/include/plumetrace/sim/world.hpp"
 test -f "$prefix/share/plumetrace/studies/lochmatter2008/study.toml"
+cmp "$prefix/share/doc/plumetrace/LICENSE" "$source/LICENSE"   # binaries carry the notice
 
 cmake -S "$source/examples/out_of_tree" -B "$work/app" -DCMAKE_PREFIX_PATH="$prefix" \
   -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -54,6 +54,11 @@ want = pd.read_csv(cli_csv, float_precision="round_trip")
 for col in ("point", "casting.beta_deg", "trial", "seed", "success", "time_s", "d_t", "d_u",
             "steps"):
     assert df[col].tolist() == want[col].tolist(), col
+# the licence travels with the package: in its metadata and as a file of its dist-info
+from importlib import metadata
+dist = metadata.distribution("plumetrace")
+assert dist.metadata["License"] == "BSD-3-Clause", dist.metadata["License"]
+assert any(f.name == "LICENSE" and "BSD 3-Clause" in f.read_text() for f in dist.files), dist.files
 print("installed", pt.__version__, "at", Path(pt.__file__).parent, "sweep of set A equal to the command")
 '
 

@@ -2,11 +2,15 @@
 
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 
+#include "campaign_run.hpp"
 #include "lochmatter2008/study.hpp"
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/store.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
@@ -127,11 +131,34 @@ void StoredSweepOptions::add_to(CLI::App& sub, const std::string& out_help, bool
       ->allow_extra_args(false);
 }
 
-std::vector<ExpandedSweep> StoredSweepOptions::sweeps() const {
-  std::vector<ExpandedSweep> result;
-  for (const auto& f : sweep_files) {
-    result.push_back(expand_sweep(read_sweep_file(f), parse_sets(sets)));
+std::vector<ExpandedSweep> StoredSweepOptions::sweeps() {
+  std::vector<SweepDef> defs;
+  for (const auto& f : sweep_files) defs.push_back(read_sweep_file(f));
+  // why: a store remembers the --set its sweeps ran with, so that export and report of it need
+  // not repeat them (issue 22); given --set values are used as given
+  if (sets.empty() && std::filesystem::is_regular_file(store)) {
+    const StoreInfo info = read_store_info(store);
+    std::optional<std::vector<std::string>> recorded;
+    for (const auto& def : defs) {
+      const auto it = info.sets.find(def.name);
+      const std::vector<std::string> mine = it == info.sets.end() ? std::vector<std::string>{}
+                                                                  : it->second;
+      if (recorded && *recorded != mine) {
+        throw ConfigError("results store '" + store +
+                          "' recorded other --set values for its sweeps; give --set");
+      }
+      recorded = mine;
+    }
+    if (recorded && !recorded->empty()) {
+      sets = *recorded;
+      std::string text;
+      for (const auto& s : sets) text += " --set " + shell_word(s);
+      std::fprintf(stderr, "plumetrace: note: using the --set the store recorded:%s\n",
+                   text.c_str());
+    }
   }
+  std::vector<ExpandedSweep> result;
+  for (const auto& def : defs) result.push_back(expand_sweep(def, parse_sets(sets)));
   check_campaign(result, runs);
   return result;
 }

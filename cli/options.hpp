@@ -56,8 +56,9 @@ struct StoredSweepOptions {
 
   /// Registers them on `sub`, --out with its help and required when `out_required`.
   void add_to(CLI::App& sub, const std::string& out_help, bool out_required);
-  /// The sweeps the files and --set values say.
-  std::vector<ExpandedSweep> sweeps() const;
+  /// The sweeps the files and --set values say; without --set, the --set the store recorded
+  /// for them (then kept in `sets`, for the commands a report shows), said on stderr.
+  std::vector<ExpandedSweep> sweeps();
 };
 
 /// --set key=value texts as settings; throws ConfigError for one without '='.

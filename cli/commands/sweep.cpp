@@ -71,7 +71,7 @@ std::string sweep_label(const SweepPlan& plan) {
 
 // after the runs: the exports and the summary, or for a shard what its store holds
 int finish_sweep(const SweepPlan& plan, const Store& store, int runs, const CampaignResult& result,
-                 const std::string& where) {
+                 const std::string& where, bool quiet) {
   const auto counts = [&] {
     char buf[160];
     std::snprintf(buf, sizeof buf, "%lld runs (%lld computed now, %lld from the store) in %.1f s",
@@ -89,7 +89,7 @@ int finish_sweep(const SweepPlan& plan, const Store& store, int runs, const Camp
   const auto rows = store.rows();
   std::filesystem::create_directories(plan.out);
   write_exports(plan.out, plan.sweeps, rows, runs);
-  std::fputs(summary_table(plan.sweeps, rows, runs).c_str(), stdout);
+  if (!quiet) std::fputs(summary_table(plan.sweeps, rows, runs).c_str(), stdout);
   std::printf("%s; store %s; exports in %s/\n", counts().c_str(), store.path().c_str(),
               plan.out.c_str());
   return 0;
@@ -195,10 +195,11 @@ int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
       std::fprintf(stderr, "plumetrace: the MPI job stopped early: %s; all %lld runs are in '%s'\n",
                    stop_cause(report).c_str(), static_cast<long long>(result.total),
                    store->path().c_str());
-      finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank));
+      finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank), cmd.quiet);
       return kInterrupted;
     }
-    return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank));
+    return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank),
+                        cmd.quiet);
   } catch (...) {
     // the other ranks may wait for this one: end the job once the error is reported
     ranks.abandon(exit_code(std::current_exception()));
@@ -230,7 +231,7 @@ CLI::App* SweepCommand::add(CLI::App& app) {
   sub->add_option("--shard", shard,
                   "compute only part I of N (I/N, e.g. 2/8) for job arrays; merge the parts' "
                   "stores with plumetrace merge");
-  sub->add_flag("--quiet", quiet, "no progress bar");
+  sub->add_flag("--quiet", quiet, "no progress bar and no summary table");
   sub->add_flag("--fresh", fresh,
                 "discard every run the store holds (needed only when the base scenario, a --set or "
                 "the seed changed; a sweep given more values keeps its stored runs)");
@@ -250,7 +251,7 @@ int SweepCommand::run() {
                          plan.shard)) {
     return kInterrupted;
   }
-  return finish_sweep(plan, *results, runs, result, "");
+  return finish_sweep(plan, *results, runs, result, "", quiet);
 }
 
 }  // namespace plumetrace::cli

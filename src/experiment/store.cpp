@@ -822,6 +822,24 @@ int runs_value(const std::string& path, const std::string& key, const std::strin
   return static_cast<int>(*v);
 }
 
+// the --set texts recorded under meta key `key` ("sets:NAME"): a JSON list of strings
+std::vector<std::string> sets_value(const std::string& path, const std::string& key,
+                                    const std::string& text) {
+  const auto doc = nlohmann::json::parse(text, nullptr, false);
+  std::vector<std::string> sets;
+  if (doc.is_array()) {
+    for (const auto& s : doc) {
+      if (!s.is_string()) break;
+      sets.push_back(s.get<std::string>());
+    }
+  }
+  if (!doc.is_array() || sets.size() != doc.size()) {
+    damaged(path, "meta key '" + shown(key) + "' holds '" + shown(text) +
+                      "', not a JSON list of --set texts");
+  }
+  return sets;
+}
+
 // the meta rows, checked; `checks` gets the checksums (none in a store of schema 1)
 std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& path,
                                              std::optional<Checksum> checks[2]) {
@@ -851,6 +869,7 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
   need("version");
   for (const auto& [key, value] : meta) {
     if (key.rfind("runs:", 0) == 0) runs_value(path, key, value);
+    if (key.rfind("sets:", 0) == 0) sets_value(path, key, value);
   }
   if (meta.count("shard")) {
     int i = 0, n = 0;
@@ -964,6 +983,9 @@ StoreContents load(sqlite3* db, const std::string& path) {
   compare(checks[0], runs_sum, "runs");
   compare(checks[1], points_sum, "points");
 
+  for (const auto& [key, value] : meta) {
+    if (key.rfind("sets:", 0) == 0) c.info.sets[key.substr(5)] = sets_value(path, key, value);
+  }
   // the runs per point asked of each sweep, and how many of those are stored
   for (const auto& [sweep, count] : c.info.points) {
     const auto it = meta.find("runs:" + sweep);
@@ -1483,6 +1505,10 @@ void Store::put_points(const std::vector<ExpandedSweep>& sweeps) {
       }
     }
     writer.finish();
+    // the --set each sweep ran with, for export and report (issue 22)
+    for (const auto& sweep : sweeps) {
+      put_meta(db_, path_, "sets:" + sweep.def.name, nlohmann::json(sweep.sets).dump());
+    }
   });
   campaign_ = std::move(numbered);
 }
@@ -1715,6 +1741,11 @@ MergeReport Store::absorb(const std::vector<std::string>& parts,
     }
     writer.finish();
     write_plan(runs, "");
+    for (const auto& c : contents) {
+      for (const auto& [sweep, sets] : c.info.sets) {
+        put_meta(db_, path_, "sets:" + sweep, nlohmann::json(sets).dump());
+      }
+    }
   });
   return report;
 }

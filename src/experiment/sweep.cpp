@@ -101,7 +101,12 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
   base.insert(base.end(), def.settings.begin(), def.settings.end());
   base.insert(base.end(), overrides.begin(), overrides.end());
 
-  ExpandedSweep out{def, {}};
+  ExpandedSweep out{def, {}, {}};
+  for (const auto& o : overrides) {
+    if (o.origin != "--set" && o.origin != "Python") continue;  // a preset file's: not a --set
+    const auto* text = std::get_if<std::string>(&o.value);
+    out.sets.push_back(o.key + "=" + (text ? *text : format_value(o.value)));
+  }
   out.points.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     // the grid in row-major order: the first axis varies slowest

@@ -1,12 +1,13 @@
-#include "plumetrace/core/files.hpp"
 #include "plumetrace/io/exports.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/io/results_io.hpp"
@@ -55,17 +56,42 @@ std::string values_text(const ExpandedSweep& sweep, const SweepPoint& p) {
 
 std::string summary_table(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
                           int runs_override) {
-  std::string out = line("%-8s %-44s %5s  %-24s %-24s\n", "sweep", "point", "runs",
-                         "success [95% CI]", "overhead [95% CI]");
+  // the cells first, then each column as wide as its widest cell (issue 22: long point texts
+  // pushed their rows out of line)
+  std::vector<std::array<std::string, 5>> cells{
+      {"sweep", "point", "runs", "success [Wilson 95%]", "overhead [bootstrap 95%]"}};
   for (const auto& sweep : sweeps) {
     const int runs = runs_per_point(sweep, runs_override);
     for (const auto& p : sweep.points) {
       const PointStats st = summarize(point_runs(rows, sweep.def.name, p.index, runs));
-      out += line("%-8s %-44s %5lld  %-24s %-24s\n", sweep.def.name.c_str(),
-                  values_text(sweep, p).c_str(), static_cast<long long>(st.runs),
-                  interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2).c_str(),
-                  interval_text(st.overhead.mean, st.overhead.lo, st.overhead.hi, 3).c_str());
+      // why: the overhead d_t/d_u is at least 1; the percentile bootstrap lies within the
+      // sample, where a t interval of a few runs reached below 0 (issue 22)
+      cells.push_back({sweep.def.name, values_text(sweep, p), std::to_string(st.runs),
+                       interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2),
+                       interval_text(st.overhead.mean, st.overhead_bootstrap.lo,
+                                     st.overhead_bootstrap.hi, 3)});
     }
+  }
+  // characters, not bytes: a UTF-8 continuation byte starts no character
+  const auto width = [](const std::string& text) {
+    return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
+      return (static_cast<unsigned char>(c) & 0xc0) != 0x80;
+    }));
+  };
+  std::array<std::size_t, 5> widths{};
+  for (const auto& row : cells) {
+    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], width(row[c]));
+  }
+  std::string out;
+  for (const auto& row : cells) {
+    std::string text;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string pad(widths[c] - width(row[c]), ' ');
+      // the runs right-aligned, the rest left; no spaces after the last column
+      text += c == 2 ? pad + row[c] : row[c] + (c + 1 < row.size() ? pad : "");
+      if (c + 1 < row.size()) text += "  ";
+    }
+    out += text + "\n";
   }
   return out;
 }

@@ -577,10 +577,40 @@ void derive_scenario(Scenario& scenario) {
   if (robot.start_y_auto) robot.start.y = source.y + robot.start_offset.y;
 }
 
+double run_work(const Scenario& scenario) {
+  const PlumeParams& plume = scenario.plume;
+  const double vx = scenario.wind.velocity.x;
+  const double crossing =
+      vx > 0.0 ? (scenario.arena.x_max - scenario.arena.x_min) / vx : scenario.supervisor.timeout;
+  const double alive = plume.lifetime == Lifetime::kRing
+                           ? static_cast<double>(plume.capacity)
+                           : plume.release_rate * crossing;
+  return alive * (scenario.sim.warmup + scenario.supervisor.timeout) / scenario.sim.dt;
+}
+
 std::vector<std::string> scenario_warnings(const Scenario& scenario) {
   // a length or time in a sentence: to the centimetre (or hundredth of a second)
   const auto cm = [](double v) { return bound_text(std::round(v * 100.0) / 100.0); };
   std::vector<std::string> out;
+  if (const double work = run_work(scenario); work > kLargeRunWork) {
+    const auto sig = [](double v) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.2g", v);
+      return std::string(text);
+    };
+    out.push_back(
+        "a run may take up to " + sig(work) + " filament-steps (" +
+        (scenario.plume.lifetime == Lifetime::kRing
+             ? "plume.capacity = " + std::to_string(scenario.plume.capacity) + " filaments"
+             : "the filaments plume.release_rate = " + bound_text(scenario.plume.release_rate) +
+                   " /s keeps in the arena") +
+        " over (sim.warmup + supervisor.timeout) / sim.dt = " +
+        sig((scenario.sim.warmup + scenario.supervisor.timeout) / scenario.sim.dt) +
+        " steps), " + sig(work / 6.1e7) +
+        " times the paper's setup: minutes to hours per run at 3 to 10 ns per filament-step "
+        "(docs/performance.md); lower plume.release_rate or plume.capacity, or "
+        "supervisor.timeout");
+  }
   const Vec3& source = scenario.source.center;
   const Pose& start = scenario.robot.start;
   const double vx = scenario.wind.velocity.x;
@@ -634,6 +664,17 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario) {
                   " m to each side: set robot.start_y to \"auto\" (it follows source.y + "
                   "robot.start_offset_y), or robot.start_offset_y or robot.start_y nearer the "
                   "centreline");
+  }
+  // the sensor's height: the walk spreads odor up and down as it does sideways (issue 22)
+  const double above = scenario.odor.height - source.z;
+  if (std::abs(above) > spread) {
+    out.push_back("the robot's odor sensor is " + cm(std::abs(above)) + " m " +
+                  (above > 0.0 ? "above" : "below") +
+                  " the source's centre (odor.height = " + cm(scenario.odor.height) +
+                  " m, source.z = " + cm(source.z) + " m), while the odor spreads about " +
+                  cm(spread) +
+                  " m up and down where the robot starts: it may never perceive odor; set "
+                  "odor.height nearer source.z");
   }
   return out;
 }

@@ -13,7 +13,7 @@ P="$(realpath "${1:-build/plumetrace}")"
 corpus=tests/fuzz/corpus
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$corpus"/{scenario,sweep,trace,store}
+mkdir -p "$corpus"/{scenario,sweep,trace,store,study}
 
 # the --set separator of the TOML targets (tests/fuzz/fuzz_support.hpp)
 with_sets() {
@@ -106,6 +106,18 @@ sqlite3 "$tmp/other.sqlite" "UPDATE meta SET value = '{\"sweeps\":[]}' WHERE key
 cp "$tmp/other.sqlite" "$r/slim-other-definition.sqlite"
 : >"$r/empty.sqlite"
 printf 'not a database\n' >"$r/bad-text.sqlite"
+# study: study.toml files of the fuzzed study folder (tests/fuzz/fuzz_study.cpp: two.toml,
+# sets/one.toml and report.py inside it, outside.py beside it), the shipped ones, and mistakes
+st="$corpus/study"
+cp studies/meander/study.toml "$st/meander.toml"
+printf 'name = "meander"\ntitle = "Beyond the paper"\nsets = ["two.toml", "sets/one.toml"]\nreport = "plumetrace.studies.meander"\n' >"$st/ok-module.toml"
+printf 'name = "fuzzed"\nsets = ["two.toml"]\nreport = "report.py"\n' >"$st/ok-file.toml"
+printf 'name = "../../escaped"\nsets = ["two.toml"]\n' >"$st/bad-name.toml"
+printf 'name = "x"\nsets = ["two.toml"]\nreport = "this"\n' >"$st/bad-report-module.toml"
+printf 'name = "x"\nsets = ["two.toml"]\nreport = "../outside.py"\n' >"$st/bad-report-outside.toml"
+printf 'name = "x"\nsets = ["two.toml", "two.toml"]\n' >"$st/bad-twice.toml"
+printf 'name = "t\\u001b[31m"\nsets = ["two.toml"]\n' >"$st/bad-control.toml"
+printf 'name = "x"\nsets = ["two.toml"]\nextra = 1\n' >"$st/bad-key.toml"
 mkdir -p tests/fuzz/dict
 /usr/bin/python3 tests/fuzz/make_dict.py "$s/resolved.toml" tests/fuzz/dict/toml.dict
-echo "make_corpus: seeds in $corpus/{scenario,sweep,trace,store}; tests/fuzz/dict/toml.dict"
+echo "make_corpus: seeds in $corpus/{scenario,sweep,trace,store,study}; tests/fuzz/dict/toml.dict"

@@ -40,6 +40,8 @@ struct StoreInfo {
   std::map<std::string, int> runs;             ///< runs per point asked of each sweep
   std::map<std::string, std::int64_t> points;  ///< points of each sweep
   std::map<std::string, std::int64_t> stored;  ///< stored runs of each sweep (trial < runs)
+  /// The --set each sweep ran with (ExpandedSweep::sets), where the store recorded them.
+  std::map<std::string, std::vector<std::string>> sets;
 };
 
 /// A point of a sweep as a store holds it.

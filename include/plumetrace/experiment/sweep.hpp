@@ -80,6 +80,9 @@ struct SweepPoint {
 struct ExpandedSweep {
   SweepDef def;                    ///< the definition
   std::vector<SweepPoint> points;  ///< grid points
+  /// The overrides given with `--set` (or from Python) as KEY=VALUE texts, in order: a store
+  /// records them, so that exporting it needs them not again (issue 22).
+  std::vector<std::string> sets;
 };
 
 /// The number of grid points of a sweep (the product of its axes' sizes, computed without

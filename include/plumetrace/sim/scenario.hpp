@@ -146,10 +146,21 @@ double derived_warmup(const Scenario& scenario);
 /// writing a Scenario's fields in code.
 void derive_scenario(Scenario& scenario);
 
-/// What makes a valid scenario an unlikely one to track: the robot starts outside odor (upwind
-/// of the source, beside the plume, or beyond its end), or the plume cannot reach the start
-/// within the warm-up. One sentence each, naming the keys to change; empty for the paper's
-/// setups. Geometric, at the mean wind (docs/scenarios.md).
+/// The most filament-steps one run may take: the filaments alive (the ring, or for
+/// lifetime = "leave_arena" the release rate times the arena's crossing time) times the steps of
+/// the warm-up and the timeout. The paper's setup: 1600 x 38125 = 6.1e7.
+double run_work(const Scenario& scenario);
+
+/// run_work above which a scenario is warned about (1e10 filament-steps, 160 times the paper's:
+/// half a minute to a minute of one core). why: valid keys can ask for hours without a word
+/// (plume.release_rate = 1e5 derives a ring of 1.6e6 filaments; issue 22, G18).
+inline constexpr double kLargeRunWork = 1e10;
+
+/// What makes a valid scenario an unlikely one to track, or a slow one: the robot starts outside
+/// odor (upwind of the source, beside the plume, beyond its end, or with its sensor above or
+/// below the plume), the plume cannot reach the start within the warm-up, or a run may take more
+/// than kLargeRunWork filament-steps. One sentence each, naming the keys to change; empty for
+/// the paper's setups. Geometric, at the mean wind (docs/scenarios.md).
 std::vector<std::string> scenario_warnings(const Scenario& scenario);
 
 /// Every config key of a scenario bound to its place, in file order (Scenario::fields).

@@ -383,8 +383,8 @@ T spec_field(const py::dict& d, const char* field, const std::string& key) {
   try {
     return d[field].cast<T>();
   } catch (const py::cast_error&) {
-    throw py::type_error(key + ": " + field + " " + py::repr(d[field]).cast<std::string>() +
-                         " (" + type_name(d[field]) + ") is not " +
+    throw py::type_error(key + ": " + field + " " + py::repr(d[field]).cast<std::string>() + " (" +
+                         type_name(d[field]) + ") is not " +
                          (std::is_same_v<T, bool> ? "True or False" : "a number in range"));
   }
 }

@@ -229,6 +229,9 @@ def register_controller(name, factory, params=None):
     if not isinstance(name, str):
         raise TypeError(f"register_controller: the name {_shown(name)} is not a str")
     name = _name_text("register_controller", "the name", name)
+    if not callable(factory):
+        raise TypeError(f"register_controller('{name}'): the factory must be callable (a class "
+                        f"or a function f(params, rng)), got {_shown(factory)}")
     declared = getattr(factory, "params", None) if params is None else params
     declared = {} if declared is None else declared
     if not isinstance(declared, Mapping):

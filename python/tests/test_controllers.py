@@ -338,3 +338,21 @@ def test_register_controller_refuses_names_and_keys_that_are_not_text():
     with pytest.raises(TypeError, match=r"k\.leg: declare it with plumetrace\.Param"):
         pt.register_controller("k", _Abandons, params={"leg": 1.0})
     assert "k" not in pt.algorithms()
+
+
+def test_the_core_refuses_a_key_description_it_cannot_read_naming_the_key_and_field():
+    # what Param._spec hands the core, made by hand: the core names the field, not pybind
+    spec = {"name": "k", "kind": "number", "default": 0.5, "min": None, "max": None,
+            "min_open": False, "max_open": False, "help": "", "choices": []}
+    for field, value, kind in [("default", "x", "number"), ("min", "abc", "number"),
+                               ("max", 2**70, "integer"), ("default", 1.5, "integer"),
+                               ("min_open", "yes", "number"), ("choices", "ab", "choice")]:
+        bad = dict(spec, kind=kind, **{field: value})
+        if kind == "integer":
+            bad["default"] = 1 if field != "default" else value
+        if kind == "choice":
+            bad["default"] = "a"
+        with pytest.raises((TypeError, ValueError), match=rf"^direct\.k: {field}") as caught:
+            pt._core.register_controller("direct", [bad], _Abandons)
+        assert "Unable to cast" not in str(caught.value)
+    assert "direct" not in pt.algorithms()

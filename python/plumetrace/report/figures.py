@@ -17,6 +17,7 @@ from matplotlib.patches import Circle, Patch
 
 from .data import (DASH, VERDICT_STYLE, Point, SweepSet, _fixed_points, _held, _int, _is_number,
                    _num, _sensitivity_grid, fmt_value, verdict_style, write_whole)
+from .wording import counted, verb
 
 DPI = 100
 BAR_COLOR = "#8fb3d9"
@@ -657,7 +658,8 @@ def readings_map_figure(summary: dict, readings: list, path: Path) -> Path:
         ax.tick_params(labelsize=7)
         held, no, unclear, n = _held(r)
         ax.set_title(f"{r.get('name')}{' (main)' if r.get('main') else ''}: "
-                     f"{held} of {n} claims hold", fontsize=9)
+                     f"{counted(held, n, 'claim', 'claims')} {verb(held, 'holds', 'hold')}",
+                     fontsize=9)
     for ax in axes[len(readings):]:
         ax.axis("off")
     if mesh is not None:

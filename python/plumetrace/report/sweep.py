@@ -9,8 +9,9 @@ OUT/figures/sweep_NAME.png. `plumetrace report SWEEP.toml --store S` runs it; fr
 
 Per sweep: success rate with its Wilson 95% interval and the mean distance overhead of the
 successful runs with its percentile bootstrap 95% interval (the numbers `plumetrace sweep`
-prints; within the sample's range, so never below 1), against the first axis; a second axis is drawn as colours (hue) beside each other, or as one row of panels per
-value when it has more than MAX_HUE values; each further axis gives one row of panels per
+prints; within the sample's range, so never below 1), against the first axis; a second axis is
+drawn as colours (hue) beside each other, or as one row of panels per value when it has more
+than MAX_HUE values; each further axis gives one row of panels per
 combination of its values (nothing is pooled), up to MAX_FACETS rows. The title states what the
 data say: where success is highest and lowest, and whether the 95% intervals separate them.
 Points with fewer runs than their sweep asks for are named, with the command that computes them.
@@ -464,13 +465,13 @@ def build_sweep_report(out_dir, results: Optional[dict] = None,
                    _doc_link(out, "docs/experiments.md"), "):"]), Bullets(findings)]
     missing = [(s, p) for s in views for p in s.incomplete]
     if missing:
-        k, one = len(missing), len(missing) == 1
+        k = len(missing)
+        their = verb(k, "its", "their")
         intro.append(Para([("b", "Incomplete:"),
                            f" {counted(k, sum(len(s.points) for s in views), 'point', 'points')} "
-                           f"{verb(k, 'has', 'have')} fewer runs than "
-                           f"{'its' if one else 'their'} sweep asks for; {'its' if one else 'their'}"
-                           " numbers rest on the runs stored (see each sweep's section, and below "
-                           "how to compute the rest)."]))
+                           f"{verb(k, 'has', 'have')} fewer runs than {their} sweep asks for; "
+                           f"{their} numbers rest on the runs stored (see each sweep's section, "
+                           "and below how to compute the rest)."]))
     if made_from:
         intro.append(Para([made_from]))
 

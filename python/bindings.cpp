@@ -106,13 +106,9 @@ std::vector<pt::Setting> settings_of(const std::optional<std::string>& path,
                                      const py::list& overrides) {
   std::vector<pt::Setting> settings;
   if (path) settings = pt::read_scenario_file(*path);
+  // why: no origin, so that an error reads "sim.warmup: ..." (the key is the caller's own)
   for (const auto& [key, value] : overrides_of(overrides)) {
-    pt::Setting s;
-    s.key = key;
-    s.value = value;
-    s.origin = "Python";
-    s.layer = pt::Layer::kCommandLine;
-    settings.push_back(std::move(s));
+    settings.push_back({key, value, false, "", pt::Layer::kCommandLine});
   }
   return settings;
 }
@@ -379,6 +375,20 @@ bool plain_name(const std::string& name, std::string_view extra) {
   });
 }
 
+// one field of a declared key's description as a C++ value; a field of another type is refused
+// naming the key and the field (plumetrace.Param checks them first; this keeps pybind's "Unable
+// to cast" from anyone who calls _core directly)
+template <class T>
+T spec_field(const py::dict& d, const char* field, const std::string& key) {
+  try {
+    return d[field].cast<T>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(key + ": " + field + " " + py::repr(d[field]).cast<std::string>() + " (" +
+                         type_name(d[field]) + ") is not " +
+                         (std::is_same_v<T, bool> ? "True or False" : "a number in range"));
+  }
+}
+
 // one declared key from its Python description (plumetrace.Param._spec), checked
 ScriptedKey scripted_key(const std::string& controller, const py::dict& d, double& number,
                          int& integer, ScriptedChoice& choice) {
@@ -390,14 +400,14 @@ ScriptedKey scripted_key(const std::string& controller, const py::dict& d, doubl
   }
   k.help = text_of(d["help"], key + ": help");
   const std::string kind = text_of(d["kind"], key + ": kind");
-  const py::object lo = d["min"], hi = d["max"];
+  const bool no_min = d["min"].is_none(), no_max = d["max"].is_none();
   if (kind == "number") {
     k.kind = ScriptedKey::Kind::kNumber;
-    k.number.min = lo.is_none() ? -INFINITY : lo.cast<double>();
-    k.number.max = hi.is_none() ? INFINITY : hi.cast<double>();
-    k.number.min_open = d["min_open"].cast<bool>();
-    k.number.max_open = d["max_open"].cast<bool>();
-    number = d["default"].cast<double>();
+    k.number.min = no_min ? -INFINITY : spec_field<double>(d, "min", key);
+    k.number.max = no_max ? INFINITY : spec_field<double>(d, "max", key);
+    k.number.min_open = spec_field<bool>(d, "min_open", key);
+    k.number.max_open = spec_field<bool>(d, "max_open", key);
+    number = spec_field<double>(d, "default", key);
     const pt::NumberSpec& s = k.number;
     const bool ok = std::isfinite(number) && (s.min_open ? number > s.min : number >= s.min) &&
                     (s.max_open ? number < s.max : number <= s.max);
@@ -407,16 +417,16 @@ ScriptedKey scripted_key(const std::string& controller, const py::dict& d, doubl
     }
   } else if (kind == "integer") {
     k.kind = ScriptedKey::Kind::kInteger;
-    const auto bound = [&](const py::object& v, int none) {
-      if (v.is_none()) return none;
-      const long long b = v.cast<long long>();
+    const auto bound = [&](const char* field, bool none, int otherwise) {
+      if (none) return otherwise;
+      const long long b = spec_field<long long>(d, field, key);
       if (b < INT_MIN || b > INT_MAX) {
-        throw pt::ConfigError(key + ": an integer key's bounds are within +-2^31");
+        throw pt::ConfigError(key + ": " + field + ": an integer key's bounds are within +-2^31");
       }
       return static_cast<int>(b);
     };
-    k.integer = {bound(lo, INT_MIN), bound(hi, INT_MAX)};
-    const long long v = d["default"].cast<long long>();
+    k.integer = {bound("min", no_min, INT_MIN), bound("max", no_max, INT_MAX)};
+    const long long v = spec_field<long long>(d, "default", key);
     if (v < k.integer.min || v > k.integer.max) {
       throw pt::ConfigError(key + ": the default " + std::to_string(v) +
                             " is not within the declared range");
@@ -424,6 +434,10 @@ ScriptedKey scripted_key(const std::string& controller, const py::dict& d, doubl
     integer = static_cast<int>(v);
   } else {
     k.kind = ScriptedKey::Kind::kChoice;
+    if (!py::isinstance<py::list>(d["choices"])) {
+      throw py::type_error(key + ": choices must be a list of names, got " +
+                           type_name(d["choices"]));
+    }
     for (const py::handle n : py::reinterpret_borrow<py::list>(d["choices"])) {
       const std::string name = text_of(n, key + ": a choice");
       if (name.empty() || std::count(k.names.begin(), k.names.end(), name) > 0) {
@@ -914,7 +928,7 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
   for (const auto& [key, value] : overrides) {
     const std::string name = text_of(py::str(key), "a config key");
     options.overrides.push_back(
-        {name, config_value(name, value), false, "Python", pt::Layer::kCommandLine});
+        {name, config_value(name, value), false, "", pt::Layer::kCommandLine});
   }
   SignalWatch watch;
   std::unique_ptr<py::error_already_set>& signal = watch.signal;
@@ -1073,6 +1087,15 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(c.mean, c.lo, c.hi);
       },
       py::arg("values"), "mean and its t-based 95% interval");
+  m.def(
+      "bootstrap_mean_interval",
+      [](const std::vector<double>& values) {
+        const pt::Interval i = pt::bootstrap_mean_interval(values);
+        return py::make_tuple(i.lo, i.hi);
+      },
+      py::arg("values"),
+      "percentile bootstrap 95% interval of the mean (2000 resamples, fixed seed; NaN skipped; "
+      "NaN ends below two values), as plumetrace sweep's summary");
   m.def(
       "quartiles",
       [](const std::vector<double>& values) {

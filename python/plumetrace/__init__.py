@@ -15,28 +15,40 @@ the build's copy: ``PYTHONPATH=build/python /usr/bin/python3``.
     rows.to_numpy()["success"]             # or rows.to_pandas()
     m = pt.probe(grid="arena")             # the plume alone: detection map as NumPy arrays
     rows = pt.sweep({"surge_cast.d_lost": [0.2, 0.6]}, runs=20)   # a sweep as a dict of axes
-    rows.summary()                         # per point: Wilson 95% of success, t 95% of overhead
+    rows.summary()                         # Wilson 95% of success, bootstrap 95% of overhead
     pt.report(rows, out="out/mine")        # report.html, report.md, report.csv, figures/
 
 Submodules: ``plumetrace.studies`` (the studies' sweep files), ``plumetrace.controllers`` (write
 your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plumetrace.plots``
 (matplotlib helpers), ``plumetrace.report`` (the reproduction report,
-``python3 -m plumetrace.report OUT_DIR``).
+``python3 -m plumetrace.report OUT_DIR``, and ``plumetrace.report(rows, out=...)`` for any
+sweep), ``plumetrace.sweeps`` (dict sweeps and their statistics), ``plumetrace.calibrate`` (the
+calibration of the paper's unknowns). ``dir(plumetrace)`` lists all of it.
 """
 
 __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning", "StoreError",
-           "SweepRows", "algorithms", "probe", "register_controller", "result_fields", "run",
-           "sweep", "__version__"]
+           "SweepRows", "algorithms", "probe", "register_controller", "report", "result_fields",
+           "run", "sweep", "__version__"]
+
+# the submodules a user imports, loaded on first use
+_SUBMODULES = ("calibrate", "controllers", "env", "plots", "report", "studies", "sweeps")
 
 
 def __getattr__(name):
-    if name == "report":  # the report package, callable: plumetrace.report(...) for any sweep
+    # why: lazy, so that plumetrace.report works from the source tree without the C++ module;
+    # the report package is callable: plumetrace.report(...) for any sweep
+    if name in _SUBMODULES:
         import importlib
 
-        return importlib.import_module(".report", __name__)
-    # why: lazy, so that plumetrace.report works from the source tree without the C++ module
+        return importlib.import_module(f".{name}", __name__)
     if name in __all__:
         from . import api
 
         return getattr(api, name)
     raise AttributeError(f"module 'plumetrace' has no attribute {name!r}")
+
+
+def __dir__():
+    """The API (__all__) and the submodules, as a user sees them; no private names."""
+    dunders = (n for n in globals() if n.startswith("__"))
+    return sorted({*__all__, *_SUBMODULES, *dunders})

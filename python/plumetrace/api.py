@@ -273,9 +273,10 @@ class SweepRows:
 
     def summary(self):
         """Per point: its axis values, the count of each outcome, the success rate with its
-        Wilson 95% interval and the mean overhead of the successful runs with its t-based 95%
-        interval and quartiles, as `plumetrace sweep` computes them (the same numbers as its
-        summary.csv). Returns SweepRows with one row per point."""
+        Wilson 95% interval and the mean overhead of the successful runs with its percentile
+        bootstrap 95% interval (never below 1, as an overhead) and quartiles, as `plumetrace
+        sweep` computes them (the same numbers as its summary.csv). Returns SweepRows with one
+        row per point."""
         from .sweeps import summary
 
         return summary(self)

@@ -53,41 +53,146 @@ wrap_angle = _core.wrap_angle
 controller_rng = _core.controller_rng  # controller_rng(seed, trial): the stream runs hand out
 
 
+# the range of an integer key: a C++ int
+_INT_MIN, _INT_MAX = -2**31, 2**31 - 1
+
+
 class Param:
     """A config key a controller declares: its default, range and one line of help.
 
     ``Param(0.5, min=0.1, max=5.0, help="leg length (m)")`` is a number (``min_open`` and
-    ``max_open`` exclude a bound), ``Param(3, min=1, max=9)`` an integer (its default is an int),
-    ``Param("left", choices=["left", "right"])`` one of some names. Bounds are inclusive."""
+    ``max_open`` exclude a bound), ``Param(3, min=1, max=9)`` an integer (its default is an int,
+    its bounds ints, all within +-2^31), ``Param("left", choices=["left", "right"])`` one of some
+    names. Bounds are inclusive. Every field is checked here and again when the key is
+    registered: a wrong type raises TypeError, a wrong value ValueError, naming the field (and,
+    at registration, the key)."""
 
     def __init__(self, default, min=None, max=None, help="", choices=None, min_open=False,
                  max_open=False):
-        if isinstance(default, bool):
-            raise TypeError("Param: a default of True or False has no key type; use choices")
-        if choices is not None:
-            self.kind = "choice"
-            choices = [str(c) for c in choices]
-            if not isinstance(default, str) or default not in choices:
-                raise ValueError(f"Param: the default {default!r} is not one of {choices}")
-        elif isinstance(default, numbers.Integral):
-            self.kind = "integer"
-        elif isinstance(default, numbers.Real):
-            self.kind = "number"
-            if not math.isfinite(default):
-                raise ValueError(f"Param: the default {default!r} is not finite")
-        else:
-            raise TypeError(f"Param: the default must be a number or, with choices, a str; got "
-                            f"{type(default).__name__} {default!r}")
-        self.default, self.min, self.max, self.help = default, min, max, str(help)
-        self.choices, self.min_open, self.max_open = choices, bool(min_open), bool(max_open)
+        (self.kind, self.default, self.min, self.max, self.help, self.choices, self.min_open,
+         self.max_open) = _param_fields("Param", default, min, max, help, choices, min_open,
+                                        max_open)
 
     def __repr__(self):
         return f"Param({self.default!r}, min={self.min!r}, max={self.max!r}, help={self.help!r})"
 
-    def _spec(self, name):
-        return {"name": str(name), "kind": self.kind, "default": self.default,
-                "min": self.min, "max": self.max, "min_open": self.min_open,
-                "max_open": self.max_open, "help": self.help, "choices": self.choices or []}
+    def _spec(self, where, name):
+        # why: checked again, as a field may have been changed since the Param was made
+        kind, default, lo, hi, help_, choices, min_open, max_open = _param_fields(
+            where, self.default, self.min, self.max, self.help, self.choices, self.min_open,
+            self.max_open)
+        return {"name": name, "kind": kind, "default": default, "min": lo, "max": hi,
+                "min_open": min_open, "max_open": max_open, "help": help_,
+                "choices": choices or []}
+
+
+def _shown(value):
+    """A value and its type for a message, short even for a huge or odd value."""
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001 -- a repr that raises is shown by its type alone
+        text = "?"
+    text = text if len(text) <= 60 else text[:57] + "..."
+    return f"{text} ({type(value).__name__})"
+
+
+def _is_bool(value):
+    return isinstance(value, bool) or type(value).__name__ == "bool_"
+
+
+def _name_text(where, field, value):
+    """`value` checked as one line of text (a help line or a choice's name)."""
+    if not isinstance(value, str):
+        raise TypeError(f"{where}: {field} {_shown(value)} is not a str")
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ValueError(f"{where}: {field} {_shown(value)} is not valid Unicode text") from None
+    if any(c < " " or c == "\x7f" for c in value):
+        raise ValueError(f"{where}: {field} {_shown(value)} holds a control character (one "
+                         "line of text)")
+    return value
+
+
+def _param_fields(where, default, lo, hi, help_, choices, min_open, max_open):
+    """A Param's fields checked and made plain Python values: (kind, default, min, max, help,
+    choices, min_open, max_open); a TypeError or ValueError names `where` and the field."""
+    help_ = _name_text(where, "help", help_)
+    for field, flag in (("min_open", min_open), ("max_open", max_open)):
+        if not _is_bool(flag):
+            raise TypeError(f"{where}: {field} {_shown(flag)} is not True or False")
+    min_open, max_open = bool(min_open), bool(max_open)
+    if choices is not None:
+        if not isinstance(choices, (list, tuple)):
+            raise TypeError(f"{where}: choices {_shown(choices)} is not a list of names")
+        choices = [_name_text(where, "choices", c) for c in choices]
+        if not choices or any(not c or c != c.strip() for c in choices) or \
+                len(set(choices)) != len(choices):
+            raise ValueError(f"{where}: choices {_shown(choices)}: one or more distinct, "
+                             "non-empty names without spaces at either end")
+        for field, value, unset in (("min", lo, lo is None), ("max", hi, hi is None),
+                                    ("min_open", min_open, not min_open),
+                                    ("max_open", max_open, not max_open)):
+            if not unset:
+                raise ValueError(f"{where}: {field} {_shown(value)}: a key with choices has no "
+                                 "range")
+        if not isinstance(default, str) or default not in choices:
+            raise ValueError(f"{where}: default {_shown(default)} is not one of {choices}")
+        return "choice", default, None, None, help_, choices, False, False
+    if _is_bool(default):
+        raise TypeError(f"{where}: default {_shown(default)}: True or False has no key type; "
+                        "use choices")
+    if isinstance(default, numbers.Integral):
+        kind = "integer"
+        default = _bound_int(where, "default", default)
+        lo = None if lo is None else _bound_int(where, "min", lo)
+        hi = None if hi is None else _bound_int(where, "max", hi)
+        if min_open or max_open:
+            field = "min_open" if min_open else "max_open"
+            raise ValueError(f"{where}: {field}: an integer key's bounds are inclusive (give "
+                             "the next whole number instead)")
+    elif isinstance(default, numbers.Real):
+        kind = "number"
+        default = _real(where, "default", default)
+        if not math.isfinite(default):
+            raise ValueError(f"{where}: default {default!r} is not finite")
+        lo = None if lo is None else _real(where, "min", lo)
+        hi = None if hi is None else _real(where, "max", hi)
+    else:
+        hint = " without choices" if isinstance(default, str) else ""
+        raise TypeError(f"{where}: default {_shown(default)}{hint}: the default is a number "
+                        "(an int for an integer key) or, with choices, one of them")
+    if lo is not None and hi is not None and (lo > hi or (lo == hi and (min_open or max_open))):
+        raise ValueError(f"{where}: min {lo!r} and max {hi!r} leave no value")
+    below = lo is not None and (default <= lo if min_open else default < lo)
+    above = hi is not None and (default >= hi if max_open else default > hi)
+    if below or above:
+        raise ValueError(f"{where}: the default {default!r} is not within the declared range "
+                         f"(min {lo!r}, max {hi!r})")
+    return kind, default, lo, hi, help_, None, min_open, max_open
+
+
+def _bound_int(where, field, value):
+    if _is_bool(value) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{where}: {field} {_shown(value)} is not an int (an integer key's "
+                        "default and bounds are ints)")
+    value = int(value)
+    if not _INT_MIN <= value <= _INT_MAX:
+        raise ValueError(f"{where}: {field} {value} is out of an integer key's range "
+                         f"({_INT_MIN} to {_INT_MAX})")
+    return value
+
+
+def _real(where, field, value):
+    if _is_bool(value) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{where}: {field} {_shown(value)} is not a number")
+    try:
+        value = float(value)
+    except (OverflowError, ValueError):
+        raise ValueError(f"{where}: {field} {_shown(value)} is out of a float's range") from None
+    if math.isnan(value):
+        raise ValueError(f"{where}: {field} is NaN")
+    return value
 
 
 class ParamValues(Mapping):
@@ -119,7 +224,14 @@ def register_controller(name, factory, params=None):
     """Registers `factory` (a class or function ``f(params, rng)``) as the controller `name` of
     every run of this process, with the keys `params` declares (default: ``factory.params``), a
     dict of key name to Param. Returns `factory`. Raises ConfigError for a bad name or key, a
-    name that is a table of the scenario or taken by a C++ controller."""
+    name that is a table of the scenario or taken by a C++ controller; TypeError or ValueError
+    naming the key and the field for a declaration of the wrong type or value."""
+    if not isinstance(name, str):
+        raise TypeError(f"register_controller: the name {_shown(name)} is not a str")
+    name = _name_text("register_controller", "the name", name)
+    if not callable(factory):
+        raise TypeError(f"register_controller('{name}'): the factory must be callable (a class "
+                        f"or a function f(params, rng)), got {_shown(factory)}")
     declared = getattr(factory, "params", None) if params is None else params
     declared = {} if declared is None else declared
     if not isinstance(declared, Mapping):
@@ -127,15 +239,18 @@ def register_controller(name, factory, params=None):
                         f"Param, got {type(declared).__name__}")
     keys = []
     for key, p in declared.items():
+        if not isinstance(key, str):
+            raise TypeError(f"register_controller('{name}'): the key {_shown(key)} is not a str")
+        key = _name_text(f"register_controller('{name}')", "the key", key)
         if not isinstance(p, Param):
             raise TypeError(f"{name}.{key}: declare it with plumetrace.Param(...), got "
-                            f"{type(p).__name__} {p!r}")
-        keys.append(p._spec(key))
+                            f"{_shown(p)}")
+        keys.append(p._spec(f"{name}.{key}", key))
 
     def make(values, rng):
         return factory(ParamValues(values), rng)
 
-    _core.register_controller(str(name), keys, make)
+    _core.register_controller(name, keys, make)
     return factory
 
 

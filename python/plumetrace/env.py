@@ -32,7 +32,10 @@ Observation (``observation_space``, float32, 8 values):
 Action (``action_space``): a heading in [-pi, pi] (rad, odometry frame; 0 is the start heading,
 upwind) to turn toward and drive along, as a float or an array of one; with
 ``discrete_headings=n``, ``Discrete(n)``: action i drives along heading 2 pi i / n. Any
-``plumetrace.controllers.Command`` (turn_to, curve, stop, abandon) is accepted as well.
+``plumetrace.controllers.Command`` (turn_to, curve, stop, abandon) is accepted as well. Anything
+else is refused before the world moves: a bool, None, text, a complex number or an array of
+other than one real number raises TypeError, a heading that is not finite or an index out of
+0 to n - 1 ValueError, each naming the action.
 Reward: the sum over the decision's simulation steps of ``reward_fn(info)`` (info of that step),
 by default 1.0 at the step the robot reaches the source and 0.0 otherwise: an episode's return
 is 1 for a success and 0 otherwise, whatever the decision interval.
@@ -52,12 +55,14 @@ sweeps. A first ``reset()`` without any seed draws one from ``np_random`` (fresh
 
 import json
 import math
+import numbers
 import warnings
 
 import numpy as np
 
 from . import _core
 from .api import _load_json, _settings, _whole
+from .controllers import _is_bool, _shown
 from .registration import ENV_ID, register_envs
 
 try:
@@ -408,15 +413,10 @@ class PlumeEnv(Env):
     def _command(self, action):
         if isinstance(action, _core.Command):
             return action
-        if self.discrete_headings is None:
-            return _command(action)
-        values = np.asarray(action).reshape(-1) if not isinstance(action, str) else np.empty(0)
         n = self.discrete_headings
-        if (values.size != 1 or not np.issubdtype(values.dtype, np.integer)
-                or not 0 <= int(values[0]) < n):
-            raise TypeError(f"an action is an int from 0 to {n - 1} (a heading of 2 pi i / {n}) "
-                            f"or a Command, got {type(action).__name__} {action!r}"[:300])
-        return _core.Command.go(_core.wrap_angle(2.0 * math.pi * int(values[0]) / n))
+        if n is None:
+            return _core.Command.go(_action_number(action, None))
+        return _core.Command.go(_core.wrap_angle(2.0 * math.pi * _action_number(action, n) / n))
 
 
 def _observation_bounds(config):
@@ -434,15 +434,49 @@ def _observation_bounds(config):
     return low.astype(np.float32), high.astype(np.float32)
 
 
-def _command(action):
+def _action_number(action, n):
+    """The one number an action holds: a finite heading (rad) as a float, or with `n` (a
+    Discrete(n) action space) an index from 0 to n - 1 as an int. A bool, None, text, a complex
+    number or an array of other than one real number raises TypeError, a heading that is not
+    finite or an index out of range ValueError, each naming the action."""
+    want = (f"an int from 0 to {n - 1} (a heading of 2 pi i / {n})" if n is not None else
+            "a heading (a finite number or an array of one, rad)")
+
+    def refused(kind, why):
+        return kind(f"action {_shown(action)}: {why}; an action is {want} or a Command")
+
+    if action is None:
+        raise refused(TypeError, "None is no action")
+    if isinstance(action, (str, bytes)):
+        raise refused(TypeError, "text is no action")
+    if _is_bool(action):
+        raise refused(TypeError, f"a bool is no {'heading' if n is None else 'index'}")
+    value = action
+    if not isinstance(action, numbers.Number):
+        try:
+            array = np.asarray(action)
+        except (TypeError, ValueError, OverflowError):
+            raise refused(TypeError, "not an array of numbers") from None
+        if array.size != 1:
+            raise refused(TypeError, f"{array.size} values (shape {array.shape}), not one")
+        if array.dtype.kind not in "iuf":
+            raise refused(TypeError, f"an array of {array.dtype} values, not of numbers")
+        value = array.reshape(-1)[0].item()
+    if not isinstance(value, numbers.Real):
+        raise refused(TypeError, f"a {type(value).__name__} is no real number")
+    if n is not None:
+        if not isinstance(value, numbers.Integral):
+            raise refused(TypeError, f"a {type(value).__name__} is no index")
+        if not 0 <= int(value) < n:
+            raise refused(ValueError, f"out of the range 0 to {n - 1}")
+        return int(value)
     try:
-        values = np.asarray(action, dtype=np.float64).reshape(-1)
-    except (TypeError, ValueError, OverflowError):
-        values = np.empty(0)
-    if values.size != 1:
-        raise TypeError("an action is a heading (a number or an array of one) or a Command, got "
-                        f"{type(action).__name__} {action!r}"[:300])
-    return _core.Command.go(float(values[0]))
+        heading = float(value)
+    except OverflowError:
+        heading = math.inf
+    if not math.isfinite(heading):
+        raise refused(ValueError, "the heading must be a finite number")
+    return heading
 
 
 class _Renderer:

@@ -56,9 +56,9 @@ def trajectory(result, scenario=None, snapshot=-1, ax=None):
 
 
 def sweep_bars(rows, axis_key=None, hue=None, fig=None):
-    """Success rate (Wilson 95% intervals) and mean overhead of the successful runs (t 95%
-    intervals) per value of `axis_key` (default: the sweep's first axis), from plumetrace.sweep
-    rows, drawn as the reports draw them. A second axis is drawn as colours side by side (`hue`:
+    """Success rate (Wilson 95% intervals) and mean overhead of the successful runs (percentile
+    bootstrap 95% intervals, as rows.summary()) per value of `axis_key` (default: the sweep's
+    first axis), from plumetrace.sweep rows, drawn as the reports draw them. A second axis is drawn as colours side by side (`hue`:
     its key, by default the sweep's next axis); a sweep of more axes is refused with ValueError,
     as its points would be pooled (plumetrace.report draws every point of any sweep). Returns
     the figure."""

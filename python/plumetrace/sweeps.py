@@ -3,7 +3,7 @@
     import plumetrace as pt
     rows = pt.sweep({"surge_cast.d_lost": [0.1, 0.2, 0.4]}, runs=20,
                     base=pt.Scenario(controller__algorithm="surge-cast"))
-    rows.summary().to_pandas()    # per point: Wilson 95% interval of success, t 95% of overhead
+    rows.summary().to_pandas()    # per point: Wilson 95% of success, bootstrap 95% of overhead
 
 A dict sweep is the same sweep as a file with those axes (docs/experiments.md): the first key
 varies slowest, every value is checked against its key, and every run is a pure function of
@@ -59,8 +59,14 @@ def sweep_spec(sweep, runs=0, base=None, seed=None, name=None, title=None, fixed
         values = [_config_value(key, v) for v in values]
         if not values:
             raise ValueError(f"axis {key}: values must not be empty")
+        marked = _config_value(key, fixed.pop(key)) if key in fixed else None
+        # why: the value a report marks is one the sweep runs ("auto " or 0.25 for 0.2 marks
+        # nothing)
+        if marked is not None and not any(_same_value(marked, v) for v in values):
+            raise ValueError(f"fixed: {key} = {marked!r} is not one of the axis' values "
+                             f"{values}"[:300])
         axes.append({"key": key, "values": values, "label": labels.pop(key, None),
-                     "fixed": _config_value(key, fixed.pop(key)) if key in fixed else None})
+                     "fixed": marked})
     for what, rest in (("fixed", fixed), ("labels", labels)):
         if rest:
             raise ValueError(f"{what}: {', '.join(map(str, rest))} is not an axis of the sweep "
@@ -85,6 +91,13 @@ def sweep_spec(sweep, runs=0, base=None, seed=None, name=None, title=None, fixed
             "settings": list(settings), "axes": axes}
 
 
+def _same_value(a, b):
+    """Whether two config values are one: equal, both text or both numbers (1 is 1.0), and a
+    bool only equal to a bool."""
+    return (isinstance(a, bool) == isinstance(b, bool) and isinstance(a, str) == isinstance(b, str)
+            and a == b)
+
+
 def axis_keys(rows):
     """The axis keys of a sweep's rows, in axis order."""
     if rows.info.get("axes") is not None:
@@ -96,8 +109,10 @@ def axis_keys(rows):
 def summary(rows):
     """Per point of `rows` (SweepRows), in point order: the point, its axis values, the count of
     each outcome, the success rate with its Wilson 95% interval, and over the successful runs
-    the mean distance overhead with its t-based 95% interval and its quartiles (NaN where there
-    is none). Returns SweepRows with these columns."""
+    the mean distance overhead with its percentile bootstrap 95% interval (overhead_lo,
+    overhead_hi: 2000 resamples, fixed seed; within the sample's range, so never below 1; NaN
+    below two successful runs) and its quartiles (NaN where there is none). Returns SweepRows
+    with these columns."""
     import numpy as np
 
     from . import _core
@@ -119,7 +134,8 @@ def summary(rows):
         n, k = int(sel.sum()), int(success[sel].sum())
         lo, hi = _core.wilson_interval(k, n)
         values = overhead[sel & success].tolist()
-        mean, mlo, mhi = _core.mean_ci(values)
+        mean = _core.mean_ci(values)[0]
+        mlo, mhi = _core.bootstrap_mean_interval(values)
         q1, median, q3 = _core.quartiles(values)
         stats = {"runs": n, "successes": k,
                  "walls": int((outcome[sel] == "wall").sum()),

@@ -37,3 +37,52 @@ def _register_a_zigzag(pt):
             return self.go(self.heading)
 
     pt.register_controller("zigzag", Zigzag)
+
+
+def overhead_bounds(rows, out):
+    """Every overhead number plumetrace prints or draws for the sweep `rows` (SweepRows), as
+    (where, value): rows.summary()'s interval, plumetrace.report's report.csv and report.md
+    (written into `out`), and the points handed to the figures (the report's and
+    plots.sweep_bars'). An overhead is d_t / d_u >= 1, so none of them may be below 1."""
+    import csv
+    import math
+    import re
+
+    import plumetrace as pt
+    from plumetrace import plots
+    from plumetrace.report import figures
+
+    found = []
+    for r in rows.summary():
+        for key in ("overhead_lo", "overhead_hi"):
+            if not math.isnan(r[key]):
+                found.append((f"summary() point {r['point']} {key}", r[key]))
+    drawn = []
+    original = figures.draw_sweep_panels
+
+    def recording(ax_rate, ax_oh, x_labels, groups, *args, **kwargs):
+        drawn.extend(p for _, points in groups for p in points if p is not None)
+        return original(ax_rate, ax_oh, x_labels, groups, *args, **kwargs)
+
+    figures.draw_sweep_panels = recording
+    try:
+        pt.report(rows, out=out)
+        if len(rows.info.get("axes") or []) <= 2:
+            import matplotlib.pyplot as plt
+
+            plt.close(plots.sweep_bars(rows))
+    finally:
+        figures.draw_sweep_panels = original
+    for p in drawn:
+        found += [("figure", v) for v in (p.oh_lo, p.oh_hi, p.oh_mean) if v is not None]
+    with open(out / "report.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            for key in ("overhead_lo", "overhead_hi", "overhead_mean", "overhead_median",
+                        "overhead_q1", "overhead_q3"):
+                if row[key]:
+                    found.append((f"report.csv point {row['point']} {key}", float(row[key])))
+    # "1.23 [1.05, 1.40]": a mean or median with its interval, wherever report.md prints one
+    for m in re.finditer(r"(\d+\.\d+) \\?\[(\d+\.\d+), (\d+\.\d+)\\?\]",
+                         (out / "report.md").read_text()):
+        found += [(f"report.md {m.group(0)}", float(v)) for v in m.groups()]
+    return found

@@ -8,9 +8,11 @@ examples every time, so that the suite is repeatable)."""
 
 import math
 import os
+import re
 import tempfile
 import time
 from datetime import timedelta
+from numbers import Integral, Real
 from pathlib import Path
 
 import numpy as np
@@ -408,3 +410,230 @@ def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions, 
         assert obs.shape == (8,) and obs in env.observation_space and np.all(np.isfinite(obs))
         wind = env.measure_wind()
         assert all(math.isfinite(w) for w in wind)
+
+
+# -- a controller's keys (Param) and its registration -------------------------------------------
+
+class Abandons:
+    """A controller that gives up at its first step, keeping the values it was made with."""
+
+    made = []
+
+    def __init__(self, params, rng):
+        Abandons.made.append(dict(params))
+
+    def step(self, obs, wind):
+        return Command.abandon()
+
+
+ODD = st.one_of(
+    st.none(), st.booleans(), st.integers(), st.integers(-3, 3), st.floats(), st.text(max_size=4),
+    st.sampled_from([np.float64(0.5), np.int64(3), np.bool_(True), np.float32(math.nan),
+                     np.int8(-1), np.uint64(2**64 - 1), 2**70, -2**31 - 1, 10**400, 1 + 2j,
+                     [1.0], (0.5,), {"a": 1}, b"x", BadStr(), object(), ["a", "b"], ("b", "a"),
+                     [], ["a", "a"], [" a"], ["a\n"], [1, 2], "a\nb", "\ud800", math.inf,
+                     -math.inf, math.nan, 0, 1.0]))
+PARAM_FIELDS = ("min", "max", "min_open", "max_open", "help", "choices")
+plausible_fields = {"min": st.one_of(st.none(), st.integers(-5, 0), st.floats(-5.0, 0.0)),
+                    "max": st.one_of(st.none(), st.integers(5, 9), st.floats(5.0, 9.0)),
+                    "min_open": st.booleans(), "max_open": st.booleans(),
+                    "help": st.text(st.characters(min_codepoint=32, max_codepoint=0xd7ff),
+                                    max_size=8),
+                    "choices": st.just(["a", "b"])}
+param_defaults = st.one_of(st.integers(-3, 3), st.floats(-3.0, 3.0), st.just("a"), ODD)
+param_fields = st.fixed_dictionaries({}, optional={
+    f: st.one_of(plausible_fields[f], plausible_fields[f], ODD) for f in PARAM_FIELDS})
+
+
+def _quiet_run(**kwargs):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pt.ScenarioWarning)
+        return pt.run(trace=False, sim__warmup=0.0, supervisor__timeout=1.0, **kwargs)
+
+
+@bounded(300)
+@given(param_defaults, param_fields)
+def check_params_of_any_fields_register_and_run_or_name_the_field(default, fields):
+    show("param", (default, fields))
+    try:
+        p = pt.Param(default, **fields)
+    except (TypeError, ValueError) as e:
+        named = ["default", *fields]
+        assert str(e).startswith("Param: ") and any(
+            re.search(rf"\b{f}\b", str(e)) for f in named), f"{type(e).__name__}: {e}"
+        return
+    # taken: the key registers, reads back, is set and reaches a run with its value
+    pt.register_controller("prop_param", Abandons, params={"k": p})
+    assert pt.Scenario()["prop_param.k"] == p.default
+    assert pt.Scenario().update({"prop_param.k": p.default}) is None
+    Abandons.made.clear()
+    assert _quiet_run(algorithm="prop_param")["outcome"] == "gave_up"
+    assert Abandons.made == [{"k": p.default}]
+    assert type(Abandons.made[0]["k"]) is type(p.default)
+
+
+def _factory(params, rng):
+    return Abandons(params, rng)
+
+
+class NoStep:
+    def __init__(self, params, rng):
+        pass
+
+
+class FailsToStart:
+    def __init__(self, params, rng):
+        raise ValueError("this controller does not start")
+
+
+FACTORIES = {"class": Abandons, "function": _factory, "no step": NoStep,
+             "fails": FailsToStart, "not callable": 3, "None": None}
+PLAIN = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_-]*")
+controller_names = st.one_of(
+    st.sampled_from(["prop-a", "prop_b", "Prop9", "robot", "sim", "surge-cast", "-x", "", "a b",
+                     "a.b", "\u00e9t\u00e9", "a\x00", "\ud800", 7, None, b"x", BadStr()]),
+    st.text(max_size=6), st.from_regex(PLAIN, fullmatch=True).map(lambda s: "p_" + s[:8]))
+key_names = st.one_of(st.sampled_from(["leg", "k_2", "a-b", "", "two words", "x.y", 1, None]),
+                      st.text(max_size=4))
+declared = st.one_of(st.none(), st.sampled_from([3, "leg", ["leg"]]),
+                     st.dictionaries(key_names, st.one_of(
+                         st.just(pt.Param(0.5, min=0.0)), st.just(pt.Param(2, max=5)),
+                         st.just(pt.Param("a", choices=["a", "b"])), ODD), max_size=3))
+
+
+@bounded(300)
+@given(controller_names, declared, st.sampled_from(sorted(FACTORIES)))
+def check_register_controller_takes_any_names_params_and_classes_or_names_the_problem(
+        name, params, factory):
+    show("register", (name, params, factory))
+    before = pt.algorithms()
+    try:
+        pt.register_controller(name, FACTORIES[factory], params=params)
+    except (TypeError, ValueError) as e:  # ConfigError is a ValueError
+        assert pt.algorithms() == before, "a refused registration registered"
+        assert str(e) and "Unable to cast" not in str(e), f"{type(e).__name__}: {e}"
+        return
+    # registered: a plain name and a callable factory, whose keys run with their defaults
+    assert isinstance(name, str) and PLAIN.fullmatch(name) and callable(FACTORIES[factory])
+    assert name in pt.algorithms()
+    try:
+        r = _quiet_run(algorithm=name)
+    except TypeError as e:
+        assert factory == "no step" and "step" in str(e), str(e)
+    except ValueError as e:
+        assert factory == "fails" and "does not start" in str(e), str(e)
+    else:
+        assert factory in ("class", "function") and r["outcome"] == "gave_up"
+
+
+# -- PlumeEnv.step: every argument type ----------------------------------------------------------
+
+any_actions = st.one_of(
+    st.floats(), st.integers(), st.integers(-2, 5), st.booleans(), st.none(), st.text(max_size=3),
+    st.binary(max_size=2), st.complex_numbers(), st.lists(st.floats(), max_size=2),
+    st.lists(st.integers(-1, 4), max_size=2),
+    st.sampled_from([np.bool_(True), np.array([True]), np.float32(0.5), np.float16(math.inf),
+                     np.int64(2), np.uint8(3), np.int64(-1), np.array([1]), np.array(2),
+                     np.array([[0.25]]), np.array([0.1, 0.2]), np.array([]), np.array(["1"]),
+                     np.array([None]), np.complex128(1j), 2**70, 10**400, [[1], [2, 3]],
+                     {"a": 1}, (0.5,), object(), BadStr(), Command.stop(), Command.go(0.3),
+                     math.nan, -math.inf]))
+
+
+def _is_bool_action(a):
+    return isinstance(a, (bool, np.bool_)) or (isinstance(a, np.ndarray) and a.dtype == bool)
+
+
+@bounded(300)
+@given(st.lists(any_actions, min_size=1, max_size=12), st.sampled_from([None, 4]))
+def check_env_step_takes_a_heading_index_or_command_and_refuses_every_other_type(actions, n):
+    from plumetrace.env import PlumeEnv
+
+    show("env step", (actions, n))
+    env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=60.0, discrete_headings=n)
+    env.reset(seed=3)
+    for action in actions:
+        before = env._world.time()
+        try:
+            env.step(action)
+        except (TypeError, ValueError) as e:
+            assert type(e) in (TypeError, ValueError) and str(e).startswith("action "), (
+                f"{type(e).__name__}: {e}")
+            assert env._world.time() == before, "a refused action moved the world"
+            assert not isinstance(action, Command)
+            continue
+        # taken: a Command, or one real number that is no bool (finite; an index in range)
+        assert not _is_bool_action(action) and action is not None
+        if isinstance(action, Command):
+            continue
+        if isinstance(action, Real):
+            value = action
+        else:
+            array = np.asarray(action).reshape(-1)
+            assert array.size == 1 and array.dtype.kind in "iuf", repr(action)
+            value = array[0].item()
+        if n is None:
+            assert math.isfinite(float(value))
+        else:
+            assert isinstance(value, Integral) and 0 <= int(value) < n
+        if env._world.done():
+            env.reset()
+
+
+# -- intervals: no printed or drawn overhead bound below 1 ---------------------------------------
+
+def synthetic_rows(points):
+    """SweepRows of one axis "k" whose point i has the runs points[i]: an overhead (>= 1) for
+    each successful run, None for a run that hit a wall."""
+    from plumetrace.api import SweepRows
+
+    cols = {k: [] for k in ("point", "k", "trial", "outcome", "success", "overhead")}
+    for i, runs in enumerate(points):
+        for t, overhead in enumerate(runs):
+            cols["point"].append(i)
+            cols["k"].append(0.5 * i)
+            cols["trial"].append(t)
+            cols["outcome"].append("wall" if overhead is None else "success")
+            cols["success"].append(overhead is not None)
+            cols["overhead"].append(math.nan if overhead is None else overhead)
+    axes = [{"key": "k", "label": "k", "values": [0.5 * i for i in range(len(points))],
+             "fixed": None}]
+    return SweepRows("synthetic", {k: np.asarray(v) for k, v in cols.items()},
+                     {"axes": axes, "runs_per_point": max(len(r) for r in points), "seed": 1})
+
+
+overheads = st.one_of(st.none(), st.just(1.0), st.floats(1.0, 1.0 + 1e-9),
+                      st.floats(1.0, 3.0), st.floats(1.0, 1e6))
+sweep_points = st.lists(st.lists(overheads, min_size=1, max_size=6), min_size=1, max_size=5)
+
+
+@bounded(400)
+@given(sweep_points)
+def check_summary_overhead_intervals_lie_within_the_successful_runs(points):
+    show("summary", points)
+    for r, runs in zip(synthetic_rows(points).summary(), points):
+        sample = [v for v in runs if v is not None]
+        lo, hi = r["overhead_lo"], r["overhead_hi"]
+        if len(sample) < 2:
+            assert math.isnan(lo) and math.isnan(hi)
+        else:
+            # within the sample (to rounding: a resample's mean of equal values may differ from
+            # them by an ulp) and never below 1, as no mean of numbers >= 1 rounds below 1
+            assert lo >= 1.0 and lo <= hi
+            assert min(sample) * (1 - 1e-15) <= lo and hi <= max(sample) * (1 + 1e-15)
+
+
+@bounded(10)
+@given(sweep_points)
+def check_no_printed_or_drawn_overhead_bound_is_below_one(points):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from conftest import overhead_bounds
+
+    show("report", points)
+    out = Path(tempfile.mkdtemp(prefix="plumetrace_bounds_"))
+    found = overhead_bounds(synthetic_rows(points), out)
+    assert not [(where, v) for where, v in found if v < 1.0], found

@@ -197,3 +197,103 @@ def test_sweeps_release_the_gil():
         time.sleep(0.001)
     worker.join()
     assert ticks > 20
+
+
+# -- G15 on the Python surfaces: spaces around "auto" or a number are refused alike ------------
+
+def _set_item(key, value):
+    s = pt.Scenario()
+    s[key] = value
+
+
+def _set_attribute(key, value):
+    table, name = key.split(".")
+    setattr(getattr(pt.Scenario(), table), name, value)
+
+
+def _env(key, value):
+    from plumetrace.env import PlumeEnv
+
+    PlumeEnv(**{key.replace(".", "__"): value})
+
+
+_SURFACES = {
+    "Scenario(**kwargs)": lambda k, v: pt.Scenario(**{k.replace(".", "__"): v}),
+    "Scenario[key] = ": _set_item,
+    "Scenario.table.key = ": _set_attribute,
+    "Scenario.update": lambda k, v: pt.Scenario().update({k: v}),
+    "run(**kwargs)": lambda k, v: pt.run(trace=False, **{k.replace(".", "__"): v}),
+    "run(overrides=)": lambda k, v: pt.run(trace=False, overrides={k: v}),
+    "sweep axis": lambda k, v: pt.sweep({k: [v]}, runs=1),
+    "sweep overrides": lambda k, v: pt.sweep({"wind_sensor.sigma_a": [0.0]}, runs=1,
+                                             overrides={k: v}),
+    "sweep base": lambda k, v: pt.sweep({"wind_sensor.sigma_a": [0.0]}, runs=1,
+                                        base=pt.Scenario(**{k.replace(".", "__"): v})),
+    "sweep fixed": lambda k, v: pt.sweep({k: ["auto", 1.0]}, runs=1, fixed={k: v}),
+    "PlumeEnv(**kwargs)": _env,
+}
+
+
+@pytest.mark.parametrize("surface", sorted(_SURFACES))
+@pytest.mark.parametrize("value", ["auto ", " auto", "auto\t", "1 ", " 1", "1\n", "\u00a01"])
+def test_values_with_spaces_are_refused_on_every_python_surface(surface, value):
+    # sim.warmup takes a number or "auto": text with a space is neither, whatever it holds
+    with pytest.raises(ValueError) as caught:
+        _SURFACES[surface]("sim.warmup", value)
+    assert "sim.warmup" in str(caught.value)
+    # and a name with a space is no name of a choice key
+    if surface != "sweep fixed":
+        with pytest.raises(ValueError, match=r"controller\.algorithm"):
+            _SURFACES[surface]("controller.algorithm", "casting ")
+
+
+def test_a_param_default_or_choice_with_spaces_is_refused():
+    with pytest.raises(ValueError, match="not one of"):
+        pt.Param("left ", choices=["left", "right"])
+    with pytest.raises(ValueError, match="without spaces at either end"):
+        pt.Param(" left", choices=[" left", "right"])
+    with pytest.raises(TypeError, match="default '1 '"):
+        pt.Param("1 ")
+
+
+# -- errors name the key, with no "Python:" before it ------------------------------------------
+
+@pytest.mark.parametrize("call", [
+    lambda: pt.Scenario(sim__warmup="x"),
+    lambda: pt.Scenario().update({"sim.warmup": "x"}),
+    lambda: pt.run(sim__warmup="x"),
+    lambda: pt.sweep({"wind_sensor.sigma_a": [0.0]}, runs=1, sim__warmup="x"),
+])
+def test_errors_start_with_the_key_without_a_python_prefix(call):
+    with pytest.raises(pt.ConfigError) as caught:
+        call()
+    assert str(caught.value) == "sim.warmup: must be a number >= 0 or 'auto' (got 'x')"
+
+
+def test_an_override_of_an_axis_is_named_without_a_prefix():
+    with pytest.raises(pt.ConfigError) as caught:
+        pt.sweep({"sim.dt": [0.1]}, runs=1, sim__dt=0.2)
+    assert str(caught.value) == "sweep sweep: sim.dt names an axis of the sweep"
+
+
+def test_the_command_line_still_names_where_a_setting_came_from(tmp_path):
+    done = subprocess.run([CLI, "run", "--set", "sim.warmup=x"], capture_output=True, text=True)
+    assert done.returncode == 2 and "--set: sim.warmup" in done.stderr
+    scenario = tmp_path / "p.toml"
+    scenario.write_text("[sim]\nwarmup = \"x\"\n")
+    done = subprocess.run([CLI, "run", str(scenario)], capture_output=True, text=True)
+    assert done.returncode == 2 and f"{scenario}: sim.warmup" in done.stderr
+
+
+# -- dir(plumetrace) shows the API --------------------------------------------------------------
+
+def test_dir_lists_the_api_and_the_submodules_and_each_resolves():
+    names = dir(pt)
+    for name in [*pt.__all__, "controllers", "env", "plots", "report", "studies", "sweeps",
+                 "calibrate"]:
+        assert name in names, name
+        assert getattr(pt, name) is not None
+    assert "report" in pt.__all__ and callable(pt.report)
+    assert not [n for n in names if n.startswith("_") and not n.startswith("__")], names
+    with pytest.raises(AttributeError, match="no attribute 'nothing'"):
+        pt.nothing  # noqa: B018

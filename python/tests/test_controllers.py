@@ -2,7 +2,9 @@
 
 import importlib.util
 import json
+import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -162,8 +164,8 @@ def test_registering_again_replaces_and_bad_registrations_name_the_problem():
         with pytest.raises(pt.ConfigError, match=message):
             pt.register_controller(name, One)
     # declarations: a default outside its range, a key that is no Param, a bad key name
-    with pytest.raises(pt.ConfigError, match=r"bad\.size: the default 0 is not within"):
-        pt.register_controller("bad", One, params={"size": pt.Param(0, min=1)})
+    with pytest.raises(ValueError, match=r"Param: the default 0 is not within"):
+        pt.Param(0, min=1)
     with pytest.raises(TypeError, match=r"bad\.size: declare it with plumetrace\.Param"):
         pt.register_controller("bad", One, params={"size": 3})
     with pytest.raises(pt.ConfigError, match=r"bad\.two words: a key's name"):
@@ -247,3 +249,110 @@ def test_runs_from_python_open_in_the_viewer(tmp_path):
 
     with pytest.raises(ValueError, match="view 'x.png'"):
         pt.run(view="x.png")
+
+
+# -- G11: every field of a Param, of any type, is taken or refused naming it -------------------
+
+class _Abandons:
+    def __init__(self, params, rng):
+        self.params = params
+
+    def step(self, obs, wind):
+        return pt.controllers.Command.abandon()
+
+
+class _BadRepr:
+    def __repr__(self):
+        raise RuntimeError("no repr")
+
+
+# (field, value): values no Param takes, each refused with the field named
+_REFUSED = [
+    ("default", "abc"), ("default", None), ("default", True), ("default", np.bool_(False)),
+    ("default", 2**70), ("default", -2**31 - 1), ("default", math.nan), ("default", math.inf),
+    ("default", 1 + 2j), ("default", [1.0]), ("default", _BadRepr()),
+    ("min", "abc"), ("min", True), ("min", math.nan), ("min", [0.0]), ("min", 10**400),
+    ("min", 1 + 0j), ("min", _BadRepr()),
+    ("max", "1"), ("max", np.bool_(True)), ("max", -math.inf), ("max", {"a": 1}),
+    ("min_open", 1), ("min_open", None), ("min_open", "yes"), ("max_open", 0.0),
+    ("help", None), ("help", 3), ("help", "two\nlines"), ("help", "\ud800"), ("help", b"x"),
+    ("choices", "ab"), ("choices", {"a", "b"}), ("choices", 3),
+]
+
+
+@pytest.mark.parametrize("field, value", _REFUSED,
+                         ids=[f"{f}-{type(v).__name__}-{i}" for i, (f, v) in enumerate(_REFUSED)])
+def test_param_fields_of_a_wrong_type_or_value_are_refused_naming_the_field(field, value):
+    with pytest.raises((TypeError, ValueError)) as caught:
+        pt.Param(**{"default": 1.5, field: value})
+    message = str(caught.value)
+    assert type(caught.value) in (TypeError, ValueError)
+    assert message.startswith("Param: ") and re.search(rf"\b{field}\b", message), message
+
+
+def test_param_of_the_report_is_refused_naming_the_key_and_min_at_registration():
+    # the finding: pybind's "Unable to cast Python instance to C++ type" at registration
+    with pytest.raises(TypeError, match=r"^Param: min 'abc' \(str\) is not a number$"):
+        pt.Param(1.0, min="abc")
+    with pytest.raises(ValueError, match=r"^Param: default 1180591620717411303424 is out of"):
+        pt.Param(2**70)
+    # a field changed after the Param was made is caught when the key is registered
+    for field, value, error in [("min", "abc", TypeError), ("default", 2**70, ValueError),
+                                ("max_open", "no", TypeError), ("help", "a\x00b", ValueError),
+                                ("choices", "x", TypeError)]:
+        p = pt.Param(3) if field == "default" else pt.Param(1.0)
+        setattr(p, field, value)
+        with pytest.raises(error, match=rf"^oddkeys\.leg: (the )?{field}"):
+            pt.register_controller("oddkeys", _Abandons, params={"leg": p})
+    assert "oddkeys" not in pt.algorithms()
+
+
+@pytest.mark.parametrize("kwargs, value", [
+    ({"default": np.float32(0.25), "min": np.int64(0), "max": 1}, 0.25),
+    ({"default": np.int64(3), "min": np.int32(1), "max": 9}, 3),
+    ({"default": 0.5, "min": 0, "max": 2**40, "min_open": np.bool_(True)}, 0.5),
+    ({"default": -2**31, "max": 2**31 - 1}, -2**31),
+    ({"default": "b", "choices": ("a", "b"), "help": "\u00e9t\u00e9"}, "b"),
+    ({"default": 1.0, "min": -math.inf, "max": math.inf}, 1.0),
+])
+def test_params_of_numpy_scalars_and_edge_values_register_and_run(kwargs, value):
+    seen = []
+
+    def factory(params, rng):
+        seen.append(params.k)
+        return _Abandons(params, rng)
+
+    pt.register_controller("edgekeys", factory, params={"k": pt.Param(**kwargs)})
+    assert pt.Scenario()["edgekeys.k"] == value
+    r = pt.run(algorithm="edgekeys", trace=False)
+    assert r["outcome"] == "gave_up" and seen == [value] and type(seen[0]) is type(value)
+
+
+def test_register_controller_refuses_names_and_keys_that_are_not_text():
+    for name, error in [(7, TypeError), (None, TypeError), ("a\nb", ValueError),
+                        ("\ud800", ValueError)]:
+        with pytest.raises(error, match="register_controller"):
+            pt.register_controller(name, _Abandons)
+    with pytest.raises(TypeError, match=r"register_controller\('k'\): the key 1 \(int\)"):
+        pt.register_controller("k", _Abandons, params={1: pt.Param(1.0)})
+    with pytest.raises(TypeError, match=r"k\.leg: declare it with plumetrace\.Param"):
+        pt.register_controller("k", _Abandons, params={"leg": 1.0})
+    assert "k" not in pt.algorithms()
+
+
+def test_the_core_refuses_a_key_description_it_cannot_read_naming_the_key_and_field():
+    # what Param._spec hands the core, made by hand: the core names the field, not pybind
+    spec = {"name": "k", "kind": "number", "default": 0.5, "min": None, "max": None,
+            "min_open": False, "max_open": False, "help": "", "choices": []}
+    for field, value, kind in [("default", "x", "number"), ("min", "abc", "number"),
+                               ("max", 2**70, "integer"), ("default", 1.5, "integer"),
+                               ("min_open", "yes", "number"), ("choices", "ab", "choice")]:
+        bad = dict(spec, kind=kind, **{field: value})
+        if kind == "integer":
+            bad["default"] = 1 if field != "default" else value
+        if kind == "choice":
+            bad["default"] = "a"
+        with pytest.raises((TypeError, ValueError), match=rf"^direct\.k: {field}") as caught:
+            pt._core.register_controller("direct", [bad], _Abandons)
+        assert "Unable to cast" not in str(caught.value)
+    assert "direct" not in pt.algorithms()

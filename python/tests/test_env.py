@@ -189,8 +189,11 @@ def test_discrete_headings_drive_along_equally_spaced_headings():
     before = obs[4]
     obs, *_ = env.step(Command.stop())  # a Command is still an action
     assert obs[4] == before
-    for bad in (4, -1, 1.0, True, "1", [1, 2]):
+    for bad in (1.0, True, "1", [1, 2]):
         with pytest.raises(TypeError, match="action"):
+            env.step(bad)
+    for bad in (4, -1):
+        with pytest.raises(ValueError, match="out of the range 0 to 3"):
             env.step(bad)
 
 
@@ -292,3 +295,51 @@ def test_surge_cast_driving_the_environment_gets_the_built_in_run():
                          trace=False)
         for key in ("outcome", "time_s", "d_t", "d_u", "steps", "wind_samples", "odor_fraction"):
             assert info["result"][key] == builtin[key], (trial, key)
+
+
+# -- G16: an action of no heading's type is refused, naming it, before the world moves ---------
+
+_NO_HEADING = [
+    (True, TypeError, "a bool is no heading"), (np.bool_(False), TypeError, "a bool is no"),
+    (None, TypeError, "None is no action"), ("0.5", TypeError, "text is no action"),
+    (b"1", TypeError, "text is no action"), (1 + 2j, TypeError, "complex is no real number"),
+    (np.complex64(1), TypeError, "no real number"), ([1.0, 2.0], TypeError, "2 values"),
+    (np.zeros((2, 1)), TypeError, "2 values"), ([], TypeError, "0 values"),
+    (np.array([True]), TypeError, "array of bool values"), ([None], TypeError, "object values"),
+    (["a"], TypeError, "<U1 values"), ([[1], [2, 3]], TypeError, "not an array of numbers"),
+    (math.nan, ValueError, "finite"), (-math.inf, ValueError, "finite"),
+    (np.float32("nan"), ValueError, "finite"), (10**400, ValueError, "finite"),
+    (object(), TypeError, "object values"),
+]
+
+
+@pytest.mark.parametrize("action, error, says", _NO_HEADING,
+                         ids=[f"{type(a).__name__}-{i}" for i, (a, _, _) in enumerate(_NO_HEADING)])
+def test_actions_that_are_no_heading_are_refused_naming_their_type(action, error, says):
+    env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=2.0)
+    env.reset(seed=1)
+    before = env._world.time()
+    with pytest.raises(error) as caught:
+        env.step(action)
+    assert type(caught.value) is error
+    assert str(caught.value).startswith("action ") and says in str(caught.value)
+    assert env._world.time() == before  # refused before the world moved
+    env.step(0.25)  # and the episode goes on
+
+
+@pytest.mark.parametrize("action, error, says", [
+    (True, TypeError, "a bool is no index"), (np.bool_(True), TypeError, "a bool is no index"),
+    (None, TypeError, "None is no action"), (2.0, TypeError, "a float is no index"),
+    (np.float64(1), TypeError, "no index"), (1 + 0j, TypeError, "no real number"),
+    (4, ValueError, "out of the range 0 to 3"), (-1, ValueError, "out of the range"),
+    (2**70, ValueError, "out of the range"), (np.uint64(2**63), ValueError, "out of the range"),
+    (np.array([1, 2]), TypeError, "2 values"), ("2", TypeError, "text is no action"),
+])
+def test_discrete_actions_other_than_an_index_in_range_are_refused(action, error, says):
+    env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=2.0, discrete_headings=4)
+    env.reset(seed=1)
+    with pytest.raises(error) as caught:
+        env.step(action)
+    assert type(caught.value) is error and says in str(caught.value)
+    for good in (0, np.int64(3), np.uint8(1), np.array([2]), np.array(1)):
+        env.step(good)

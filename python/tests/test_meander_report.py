@@ -21,7 +21,8 @@ def point(values, successes, runs=50, overhead=1.3):
     return {"values": values, "stats": {
         "runs": runs, "successes": successes, "success_rate": successes / runs,
         "success_lo": lo, "success_hi": hi,
-        "overhead": {"mean": overhead, "lo": overhead - 0.05, "hi": overhead + 0.05}}}
+        "overhead": {"mean": overhead, "lo": overhead - 0.5, "hi": overhead + 0.05,
+                     "boot_lo": overhead - 0.04, "boot_hi": overhead + 0.03}}}
 
 
 def sweep(name, title, key, label, table):
@@ -76,3 +77,12 @@ def test_a_sweep_without_a_strength_axis_is_refused(tmp_path):
     with pytest.raises(report.MeanderReportError, match="wind.meander_gain"):
         report.build_report(out)
     assert report.main([str(tmp_path / "nowhere")]) == 2
+
+
+def test_the_overhead_is_shown_with_its_bootstrap_interval_never_its_t_interval(tmp_path):
+    out = write(tmp_path, [sweep("M", "algorithms", "controller.algorithm", "algorithm",
+                                 {"casting": [45, 30, 10], "surge-cast": [49, 48, 46]})])
+    report.build_report(out)
+    md = (out / "report.md").read_text()
+    assert "overhead \\[bootstrap 95%\\]" in md or "overhead [bootstrap 95%]" in md
+    assert "1.300 [1.260, 1.330]" in md and "0.800" not in md

@@ -31,7 +31,7 @@ def test_trajectory_draws_the_path_by_state_over_the_filaments(tmp_path):
     assert (tmp_path / "t.png").stat().st_size > 10000
 
 
-def test_sweep_bars_show_each_value_with_wilson_and_t_intervals():
+def test_sweep_bars_show_each_value_with_wilson_and_bootstrap_intervals():
     rows = pt.sweep(GOLDEN, runs=4)
     fig = plots.sweep_bars(rows, "wind_sensor.sigma_a")
     left, right = fig.axes[:2]
@@ -48,6 +48,7 @@ def test_sweep_bars_show_each_value_with_wilson_and_t_intervals():
     lo, hi = pt._core.wilson_interval(int(cols["success"][sel].sum()), 4)
     segments = left.collections[0].get_segments()
     assert segments[0][:, 1].tolist() == pytest.approx([100 * lo, 100 * hi])
-    # and the overhead's, its t interval
-    mean, tlo, thi = pt._core.mean_ci(cols["overhead"][sel & cols["success"]].tolist())
-    assert right.collections[0].get_segments()[0][:, 1].tolist() == pytest.approx([tlo, thi])
+    # and the overhead's, the percentile bootstrap interval of its mean
+    lo, hi = pt._core.bootstrap_mean_interval(cols["overhead"][sel & cols["success"]].tolist())
+    assert right.collections[0].get_segments()[0][:, 1].tolist() == pytest.approx([lo, hi])
+    assert right.get_title() == "overhead of successful runs (bootstrap 95%)"

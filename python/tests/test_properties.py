@@ -21,7 +21,12 @@ CHECKS = ["check_config_dicts_resolve_or_raise_naming_a_key",
           "check_runs_with_any_controller_give_a_result_or_its_error",
           "check_sweeps_with_any_controller_give_rows_or_its_error",
           "check_commands_take_finite_numbers_and_refuse_the_rest",
-          "check_env_episodes_under_any_actions_step_or_name_the_action"]
+          "check_env_episodes_under_any_actions_step_or_name_the_action",
+          "check_params_of_any_fields_register_and_run_or_name_the_field",
+          "check_register_controller_takes_any_names_params_and_classes_or_names_the_problem",
+          "check_env_step_takes_a_heading_index_or_command_and_refuses_every_other_type",
+          "check_summary_overhead_intervals_lie_within_the_successful_runs",
+          "check_no_printed_or_drawn_overhead_bound_is_below_one"]
 
 
 @pytest.mark.parametrize("check", CHECKS)

@@ -1,6 +1,7 @@
 """Your own sweeps as the paper's: dict sweeps, their statistics, their bars and their report."""
 
 import csv
+import json
 import math
 import os
 import subprocess
@@ -12,7 +13,7 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from conftest import plumetrace_with_core  # noqa: E402
+from conftest import overhead_bounds, plumetrace_with_core  # noqa: E402
 
 pt = plumetrace_with_core()
 from plumetrace import plots  # noqa: E402
@@ -20,6 +21,7 @@ from plumetrace import plots  # noqa: E402
 ROOT = Path(__file__).resolve().parents[2]
 CLI = os.environ.get("PLUMETRACE_CLI", str(ROOT / "build" / "plumetrace"))
 GOLDEN = ROOT / "tests" / "golden" / "sweep.toml"
+TWO_PLUMES = ROOT / "tests" / "support" / "two_plumes.toml"
 
 # a quick base: the robot starts 4 m from the source
 QUICK = {"robot.start_x": 4.0, "sim.warmup": 6.0, "supervisor.timeout": 60.0}
@@ -109,18 +111,23 @@ def test_summary_agrees_exactly_with_the_command_line_summary(tmp_path):
         assert mine["wind_sensor.sigma_a"] == float(row["wind_sensor.sigma_a"])
         for key in ("runs", "successes", "walls", "timeouts", "gave_up", "overhead_n"):
             assert mine[key] == int(row[key]), key
-        for key in ("success_rate", "success_lo", "success_hi", "overhead_mean", "overhead_lo",
-                    "overhead_hi", "overhead_median", "overhead_q1", "overhead_q3"):
+        for key in ("success_rate", "success_lo", "success_hi", "overhead_mean",
+                    "overhead_median", "overhead_q1", "overhead_q3"):
             a, b = mine[key], number(row[key])
             assert a == b or (math.isnan(a) and math.isnan(b)), (key, a, b)  # bit for bit
-    # and as the command prints them: "0.88 [0.53, 0.98]" and "1.254 [1.147, 1.361]"
+    # the overhead's interval is the C++ percentile bootstrap's (results.json's boot_lo, boot_hi)
+    points = json.loads((tmp_path / "results.json").read_text())["sweeps"][0]["points"]
+    for mine, point in zip(summary, points):
+        oh = point["stats"]["overhead"]
+        for key, theirs in (("overhead_lo", oh["boot_lo"]), ("overhead_hi", oh["boot_hi"])):
+            a, b = mine[key], math.nan if theirs is None else theirs
+            assert a == b or (math.isnan(a) and math.isnan(b)), (key, a, b)  # bit for bit
+    # and as the command prints them: "0.88 [0.53, 0.98]" and "1.254 [..."
     first = summary.to_numpy()
     printed = (f"{first['success_rate'][0]:.2f} [{first['success_lo'][0]:.2f}, "
                f"{first['success_hi'][0]:.2f}]")
     assert printed in out
-    printed = (f"{first['overhead_mean'][0]:.3f} [{first['overhead_lo'][0]:.3f}, "
-               f"{first['overhead_hi'][0]:.3f}]")
-    assert printed in out
+    assert f"{first['overhead_mean'][0]:.3f} [" in out
 
 
 def test_summary_counts_each_outcome_and_a_point_without_success_has_no_overhead():
@@ -299,3 +306,30 @@ def test_a_count_whose_interval_runs_off_the_overhead_panel_stays_inside_it():
     labels = {t.get_text(): t.xy[1] for t in ax_oh.texts if t.get_text().startswith("n=")}
     assert labels["n=8"] == 1.4 and labels["n=7"] == 1.6
     assert labels["n=3 \u2191"] == top
+
+
+# --- intervals that no data can contradict ---------------------------------------------------
+
+@pytest.mark.parametrize("sweep, runs", [(TWO_PLUMES, 1), (TWO_PLUMES, 2), ("dict", 5)])
+def test_no_printed_or_drawn_overhead_bound_is_below_one(tmp_path, sweep, runs):
+    if sweep == "dict":
+        sweep = {"surge_cast.d_lost": [0.1, 0.4, 1.2], "wind_sensor.sigma_a": [0.0, 0.6]}
+        rows = pt.sweep(sweep, runs=runs, seed=7,
+                        base=quick_base(**{"controller.algorithm": "surge-cast"}))
+    else:
+        rows = pt.sweep(sweep, runs=runs)
+    found = overhead_bounds(rows, tmp_path / "report")
+    assert not [(where, v) for where, v in found if v < 1.0]
+    cols, summary = rows.to_numpy(), rows.summary()
+    for r in summary:
+        sel = (cols["point"] == r["point"]) & cols["success"]
+        sample = cols["overhead"][sel]
+        if r["overhead_n"] < 2:
+            # one successful run: its mean, and no interval anywhere
+            assert math.isnan(r["overhead_lo"]) and math.isnan(r["overhead_hi"])
+        else:
+            # the bootstrap interval lies within the sample, so within what overheads can be
+            assert sample.min() <= r["overhead_lo"] <= r["overhead_hi"] <= sample.max()
+    intervals = sum(1 for r in summary if not math.isnan(r["overhead_lo"]))
+    assert intervals == 0 if runs == 1 else intervals > 0
+    assert any(where.startswith("figure") for where, _ in found)

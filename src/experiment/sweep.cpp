@@ -90,9 +90,11 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
   for (const auto& o : overrides) {
     for (const auto& axis : def.axes) {
       if (o.key == axis.key) {
-        // why: a preset file's setting names its file, a --set its option
-        const std::string from =
-            o.origin.empty() || o.origin == "--set" ? "--set " : o.origin + ": ";
+        // why: a preset file's setting names its file, a --set its option; one without an
+        // origin (Python's keyword arguments) is named by its key alone
+        const std::string from = o.origin.empty()      ? ""
+                                 : o.origin == "--set" ? "--set "
+                                                       : o.origin + ": ";
         throw ConfigError(where + ": " + from + o.key + " names an axis of the sweep");
       }
     }

@@ -18,6 +18,7 @@ from plumetrace.report.figures import (claims_matrix_figure, failures_figure,
                                        sensitivity_figure, trajectory_figure)
 from plumetrace.report.page import (Bullets, Cell, Para, Pre, Section, Table, _doc_link, _fig,
                                     report_command)
+from plumetrace.report.wording import counted, share_lead, verb
 
 # The paper's three algorithms, in the order of its figures.
 ALGORITHMS = ("casting", "surge-spiral", "surge-cast")
@@ -79,8 +80,9 @@ def report_title(summary: dict) -> str:
     held, _, _, n = _held(main)
     sets = len(summary.get("sets") or [])
     count = {9: "nine"}.get(sets, str(sets))
-    return (f"Lochmatter & Martinoli (2008), {count} experiment sets re-run: {held} of {n} "
-            f"claims hold under the {main.get('name')} reading")
+    return (f"Lochmatter & Martinoli (2008), {count} experiment sets re-run: "
+            f"{counted(held, n, 'claim', 'claims')} {verb(held, 'holds', 'hold')} under the "
+            f"{main.get('name')} reading")
 
 
 def _header_blocks(summary: dict, out_dir: Path) -> list:
@@ -120,8 +122,10 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
     main = readings[0]
     held, no, unclear, n = _held(main)
     runs = fmt_value(_num(summary.get("runs_per_point")))
-    blocks = [Para([("b", f"Under the {main.get('name')} reading, {held} of {n} claims hold"),
-                    f", {no} do not hold and {unclear} are unclear, at {runs} runs per value. ",
+    blocks = [Para([("b", f"Under the {main.get('name')} reading, "
+                          f"{counted(held, n, 'claim', 'claims')} {verb(held, 'holds', 'hold')}"),
+                    f", {no} {verb(no, 'does', 'do')} not hold and {unclear} "
+                    f"{verb(unclear, 'is', 'are')} unclear, at {runs} runs per value. ",
                     "A reading fixes what the paper leaves unsaid or prints inconsistently "
                     "(the amount per filament, the plume's noise and kernel, the success "
                     "radius, ...); each is listed with its evidence in ",
@@ -221,36 +225,46 @@ def _failure_totals(summary: dict) -> Optional[dict]:
 
 
 def failure_sentence(summary: dict) -> Optional[str]:
-    """The main failure mode at the fixed values in one sentence, from the summary's numbers."""
+    """The main failure mode at the fixed values in one sentence, from the summary's numbers,
+    worded as the counts are (report/wording.py: "All", "Most", "Half of the" ...)."""
     t = _failure_totals(summary)
     if t is None:
         return None
-    if t["failed"] == 0:
-        return f"None of the {t['runs']} runs at the paper's fixed values failed."
-    head = (f"{t['failed']} of {t['runs']} runs at the paper's fixed values fail "
-            f"({fmt_pct(t['failed'] / t['runs'])}): {t['walls']} at a wall, {t['timeouts']} "
-            f"by timeout, {t['gave_up']} giving up.")
+    failed, runs = t["failed"], t["runs"]
+    if failed == 0:
+        return f"{_capital(counted(0, runs, 'run', 'runs'))} at the paper's fixed values failed."
+    head = (f"{_capital(counted(failed, runs, 'run', 'runs'))} at the paper's fixed values "
+            f"{verb(failed, 'fails', 'fail')} ({fmt_pct(failed / runs)}): {t['walls']} at a "
+            f"wall, {t['timeouts']} by timeout, {t['gave_up']} giving up.")
     n = t["ends"]
     if n == 0:
         return head
     places = [
-        (t["upwind_wall"], "end at a wall upwind of the source, after passing beside it"),
-        (t["upwind_other"], "end upwind of the source (not at a wall), after passing beside it"),
-        (t["near"], "end downwind of the source but within 1 m of it"),
-        (t["far"], "end more than 1 m downwind of the source"),
+        (t["upwind_wall"], "ended at a wall upwind of the source, after passing beside it"),
+        (t["upwind_other"], "ended upwind of the source (not at a wall), after passing beside it"),
+        (t["near"], "ended downwind of the source but within 1 m of it"),
+        (t["far"], "ended more than 1 m downwind of the source"),
     ]
     count, where = max(places, key=lambda p: p[0])
-    share = count / n
-    lead = "Most" if share > 0.5 else "The largest group of"
+    rerun = "" if n == failed else "re-run "
+    if count == n:
+        subject = _capital(counted(n, n, f"{rerun}failed run", f"{rerun}failed runs"))
+    else:
+        subject = f"{share_lead(count, n)} failed runs ({count} of {n}{' re-run' * bool(rerun)})"
     closest = sorted(t["closest"])
     near_text = ""
     if closest:
         span = (f"{closest[0]:.2f} m" if closest[-1] - closest[0] < 0.005
                 else f"{closest[0]:.2f}\u2013{closest[-1]:.2f} m")
-        near_text = (f"; on their way they came within a median {span} of its centre "
-                     "(per algorithm)")
-    sample = "" if n == t["failed"] else f" of the {n} re-run"
-    return f"{lead} failed runs ({fmt_pct(share)}{sample}) {where}{near_text}. {head}"
+        near_text = (f". On its way, the {rerun}failed run came within {span} of the source's "
+                     "centre" if n == 1 else
+                     f". On their way, the {rerun}failed runs came within a median {span} of "
+                     "the source's centre (per algorithm)")
+    return f"{subject} {where}{near_text}. {head}"
+
+
+def _capital(text: str) -> str:
+    return text[:1].upper() + text[1:]
 
 
 def _setting_text(v: Any) -> str:
@@ -329,7 +343,7 @@ def _point_row(p: Point, first: str) -> list:
     ]
 
 
-POINT_HEADER = ["runs", "success rate [95% CI]", "overhead mean [95% CI]",
+POINT_HEADER = ["runs", "success rate [Wilson 95%]", "overhead mean [bootstrap 95%]",
                 "overhead median [q1, q3]", "success / wall / timeout / gave up", "mean time (s)",
                 "mean losses"]
 

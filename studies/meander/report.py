@@ -15,6 +15,7 @@ from typing import Optional
 
 from plumetrace.report.figures import _new_figure, _save
 from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
+from plumetrace.report.wording import change, difference
 
 STRENGTH_KEY = "wind.meander_gain"
 COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1")
@@ -48,8 +49,9 @@ class Curve:
         self.runs.append(stats["runs"])
         self.failures.append({k: stats.get(k, 0) for k in ("walls", "timeouts", "gave_up")})
         self.overhead.append(oh.get("mean"))
-        self.oh_lo.append(oh.get("lo"))
-        self.oh_hi.append(oh.get("hi"))
+        # the percentile bootstrap interval (docs/experiments.md): never below 1, as an overhead
+        self.oh_lo.append(oh.get("boot_lo"))
+        self.oh_hi.append(oh.get("boot_hi"))
 
 
 def curves(sweep: dict) -> tuple:
@@ -80,17 +82,19 @@ def panels(sweep: dict, label: str, lines: list, path: Path) -> Path:
         err = [[r - lo for r, lo in zip(c.rate, c.lo)], [hi - r for r, hi in zip(c.rate, c.hi)]]
         ax_s.errorbar(c.x, c.rate, yerr=err, color=color, marker="o", ms=3, capsize=2,
                       label=c.label)
-        xs = [x for x, m in zip(c.x, c.overhead) if m is not None]
-        ms = [m for m in c.overhead if m is not None]
-        lo = [m - lo for m, lo in zip(c.overhead, c.oh_lo) if m is not None and lo is not None]
-        hi = [hi - m for m, hi in zip(c.overhead, c.oh_hi) if m is not None and hi is not None]
-        if xs and len(lo) == len(xs) and len(hi) == len(xs):
-            ax_o.errorbar(xs, ms, yerr=[lo, hi], color=color, marker="o", ms=3, capsize=2)
+        # every mean, with its interval where there is one (two successful runs or more)
+        pts = [(x, m, lo, hi) for x, m, lo, hi in zip(c.x, c.overhead, c.oh_lo, c.oh_hi)
+               if m is not None]
+        if pts:
+            err = [[0.0 if lo is None else m - lo for _, m, lo, _ in pts],
+                   [0.0 if hi is None else hi - m for _, m, _, hi in pts]]
+            ax_o.errorbar([p[0] for p in pts], [p[1] for p in pts], yerr=err, color=color,
+                          marker="o", ms=3, capsize=2)
     ax_s.set_ylim(0, 1.05)
     ax_s.set_xlabel("meander strength: boundary noise gain")
     ax_s.set_ylabel("success rate (95% Wilson CI)")
     ax_o.set_xlabel("meander strength: boundary noise gain")
-    ax_o.set_ylabel("distance overhead d_t / d_u (95% CI)")
+    ax_o.set_ylabel("mean overhead d_t / d_u (bootstrap 95%)")
     ax_s.legend(title=label, fontsize=8, title_fontsize=8)
     fig.suptitle(f"{sweep['name']}: {sweep['title']}", fontsize=10)
     return _save(fig, path)
@@ -111,15 +115,18 @@ def degradation(lines: list) -> tuple:
     drops = sorted(((c.rate[0] - c.rate[-1], c) for c in lines), key=lambda d: d[0])
     best = drops[0][1]
     parts = [f"{c.label}: {interval(c, 0)} at gain {c.x[0]:g}, {interval(c, -1)} at gain "
-             f"{c.x[-1]:g} (drop {100 * d:+.0f} points)" for d, c in drops]
+             f"{c.x[-1]:g} (success {change(c.rate[0], c.rate[-1])})" for _, c in drops]
     runner = drops[1][1] if len(drops) > 1 else None
     separated = runner is not None and (best.lo[-1] > runner.hi[-1] or best.hi[-1] < runner.lo[-1])
+    # why: a line whose success does not fall is not said to degrade
+    least = ("degrades least" if change(best.rate[0], best.rate[-1]).startswith("falls")
+             else "does not degrade")
     if runner is None:
         verdict = f"{best.label} alone"
     elif separated:
-        verdict = f"{best.label} degrades least"
+        verdict = f"{best.label} {least}"
     else:
-        verdict = (f"{best.label} degrades least in the point estimates, but the data do not "
+        verdict = (f"{best.label} {least} in the point estimates, but the data do not "
                    f"separate it from {runner.label} at the strongest meander")
     return verdict, "; ".join(parts) + "."
 
@@ -129,13 +136,12 @@ def d_lost_effect(lines: list) -> tuple:
     non-overlapping 95% intervals), with the same comparison in the weakest meander."""
     by_d = sorted(lines, key=lambda c: float(c.label))
     small, large = by_d[0], by_d[-1]
-    diff_strong = large.rate[-1] - small.rate[-1]
-    diff_weak = large.rate[0] - small.rate[0]
     hurts = large.hi[-1] < small.lo[-1]
     helps = large.lo[-1] > small.hi[-1]
     text = (f"d_lost {large.label} against {small.label}: {interval(large, -1)} against "
-            f"{interval(small, -1)} at the strongest meander (difference {100 * diff_strong:+.0f} "
-            f"points), {100 * diff_weak:+.0f} points in the weakest.")
+            f"{interval(small, -1)} at the strongest meander "
+            f"({difference(large.rate[-1], small.rate[-1])}), "
+            f"{difference(large.rate[0], small.rate[0])} in the weakest.")
     verdict = "hurts" if hurts else "helps" if helps else "makes no clear difference"
     return verdict, text
 
@@ -186,8 +192,11 @@ def build_report(out_dir) -> list:
         for c in lines:
             for i, x in enumerate(c.x):
                 oh = "n/a" if c.overhead[i] is None else f"{c.overhead[i]:.3f}"
+                if c.overhead[i] is not None and None not in (c.oh_lo[i], c.oh_hi[i]):
+                    oh += f" [{c.oh_lo[i]:.3f}, {c.oh_hi[i]:.3f}]"
                 rows.append([c.label, f"{x:g}", str(c.runs[i]), interval(c, i), oh])
-        blocks.append(Table(header=[label, "gain", "runs", "success [95% CI]", "overhead"],
+        blocks.append(Table(header=[label, "gain", "runs", "success [Wilson 95%]",
+                                    "overhead [bootstrap 95%]"],
                             rows=rows))
         if key == "controller.algorithm":
             algorithm_verdict, text = degradation(lines)

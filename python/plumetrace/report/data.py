@@ -341,7 +341,7 @@ class Point:
     rate_hi: Optional[float]
     oh_n: int
     oh_mean: Optional[float]
-    oh_lo: Optional[float]  # the interval the report shows: bootstrap when given, else t
+    oh_lo: Optional[float]  # the percentile bootstrap 95% interval of the mean (None: unknown)
     oh_hi: Optional[float]
     oh_median: Optional[float]
     oh_q1: Optional[float]
@@ -351,9 +351,11 @@ class Point:
     config_hash: Optional[str]
 
     @staticmethod
-    def from_json(p: dict, t_interval: bool = False) -> "Point":
-        """A point of summary.json or results.json; the overhead's interval is the bootstrap's
-        where the file gives it, or with `t_interval` the t interval (lo, hi)."""
+    def from_json(p: dict) -> "Point":
+        """A point of summary.json or results.json. The overhead's interval is the percentile
+        bootstrap's (boot_lo, boot_hi), which plumetrace writes into every file; a file without
+        them is older, and its lo and hi are t intervals, which can reach below 1, the least
+        overhead there is: such a point shows its mean without an interval."""
         runs = _int(p.get("runs")) or 0
         successes = _int(p.get("successes")) or 0
         rate = _num(p.get("success_rate"))
@@ -375,10 +377,8 @@ class Point:
             rate_hi=hi,
             oh_n=successes if oh_n is None else oh_n,
             oh_mean=_num(oh.get("mean")),
-            oh_lo=_num(oh.get("boot_lo")) if "boot_lo" in oh and not t_interval
-            else _num(oh.get("lo")),
-            oh_hi=_num(oh.get("boot_hi")) if "boot_hi" in oh and not t_interval
-            else _num(oh.get("hi")),
+            oh_lo=_num(oh.get("boot_lo")),
+            oh_hi=_num(oh.get("boot_hi")),
             oh_median=_num(oh.get("median")),
             oh_q1=_num(oh.get("q1")),
             oh_q3=_num(oh.get("q3")),

@@ -17,6 +17,7 @@ from matplotlib.patches import Circle, Patch
 
 from .data import (DASH, VERDICT_STYLE, Point, SweepSet, _fixed_points, _held, _int, _is_number,
                    _num, _sensitivity_grid, fmt_value, verdict_style, write_whole)
+from .wording import counted, verb
 
 DPI = 100
 BAR_COLOR = "#8fb3d9"
@@ -99,8 +100,8 @@ def _rate_axis(ax, x, points: Sequence[Point], colors: Sequence[str], width: flo
 
 def _overhead_axis(ax, x, points: Sequence[Point], colors: Sequence[str], label_n: bool = True,
                    width: float = 0.7, count_rotation: int = 0):
-    """Overhead bars from 1 (the straight-line optimum) with their intervals (the bootstrap's in
-    the paper's report) and medians.
+    """Overhead bars from 1 (the straight-line optimum) with their percentile bootstrap
+    intervals and medians.
 
     Returns the indices of points that have no mean overhead (no successful run).
     """
@@ -195,7 +196,8 @@ HUE_COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1", 
 
 def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[tuple],
                       x_title: str, fixed_index: Optional[int] = None,
-                      interval: str = "t 95%", runs_per_point: Optional[int] = None) -> None:
+                      interval: str = "bootstrap 95%",
+                      runs_per_point: Optional[int] = None) -> None:
     """The paper's two panels on two axes: success rate (Wilson 95%) and overhead of the
     successful runs (`interval`), a bar per value of the x axis for each group. `groups`: (label
     or None, [Point or None per x value]); with several groups the bars of one x value stand side
@@ -232,9 +234,10 @@ def draw_sweep_panels(ax_rate, ax_oh, x_labels: Sequence[str], groups: Sequence[
             no_overhead += xs
     means = [p for _, pts in groups for p in pts if p is not None and p.oh_mean is not None]
     if means:
-        # why: each group set the limits for its own bars; the panel shows them all. The t
-        # interval of two or three runs can span metres of overhead: the limits follow the
-        # points of four runs or more where there are any (longer bars run off the panel)
+        # why: each group set the limits for its own bars; the panel shows them all. The
+        # interval of two or three runs can span the whole spread of their overheads: the
+        # limits follow the points of four runs or more where there are any (longer bars run
+        # off the panel)
         steady = [p for p in means if p.oh_n >= 4] or means
         tops = [p.oh_hi if p.oh_hi is not None else p.oh_mean for p in steady]
         lows = [p.oh_lo if p.oh_lo is not None else p.oh_mean for p in steady]
@@ -291,7 +294,7 @@ def _panel_legend(ax_legend, groups: Sequence[tuple], hue_title: Optional[str],
 
 
 def sweep_figure(facets: Sequence[tuple], x_title: str, path: Path,
-                 hue_title: Optional[str] = None, interval: str = "t 95%",
+                 hue_title: Optional[str] = None, interval: str = "bootstrap 95%",
                  runs_per_point: Optional[int] = None) -> Path:
     """Any sweep's figure: one row of the two panels per facet. `facets`: (title or None,
     x labels, groups as draw_sweep_panels takes them, index of the fixed x value or None); the
@@ -655,7 +658,8 @@ def readings_map_figure(summary: dict, readings: list, path: Path) -> Path:
         ax.tick_params(labelsize=7)
         held, no, unclear, n = _held(r)
         ax.set_title(f"{r.get('name')}{' (main)' if r.get('main') else ''}: "
-                     f"{held} of {n} claims hold", fontsize=9)
+                     f"{counted(held, n, 'claim', 'claims')} {verb(held, 'holds', 'hold')}",
+                     fontsize=9)
     for ax in axes[len(readings):]:
         ax.axis("off")
     if mesh is not None:

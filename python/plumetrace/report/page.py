@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import base64
 import html
-import os
+import re
 import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional, Sequence, Union
+from typing import Any, Iterable, Optional, Sequence, Union
 
 from .data import DASH, write_whole
 
@@ -246,13 +246,16 @@ def _fig(out_dir: Path, path: Path, caption: str, alt: str) -> Fig:
     return Fig(path=path, rel=path.relative_to(out_dir).as_posix(), caption=caption, alt=alt)
 
 
-# The repository's root, whose docs the report links: this file is
-# python/plumetrace/report/page.py there, or a copy in BUILD/python/plumetrace/report/ of a build
-# folder inside it.
+# The repository's root: this file is python/plumetrace/report/page.py there, or a copy in
+# BUILD/python/plumetrace/report/ of a build folder inside it.
 REPO_ROOT = next((p for p in Path(__file__).resolve().parents[2:5]
                   if (p / "docs").is_dir() and (p / "studies").is_dir()),
                  Path(__file__).resolve().parents[3])
 
+# The project's documents the reports cite: the package's copy (a build or an installed package
+# ships docs/*.md, cmake/python_package.cmake), else the repository's (the source tree).
+DOCS_ROOT = next((d for d in (Path(__file__).resolve().parents[1] / "docs", REPO_ROOT / "docs")
+                  if d.is_dir()), REPO_ROOT / "docs")
 
 def report_command(out_dir: Union[str, Path]) -> str:
     """The command that redraws a report from its folder's summary.json, as the README gives it
@@ -261,20 +264,57 @@ def report_command(out_dir: Union[str, Path]) -> str:
 
 
 def _doc_link(out_dir: Path, rel: str) -> tuple:
-    """A link to one of the repository's documents, relative to the report's folder (the
-    repository-relative path when this module does not run from a checkout)."""
-    target = REPO_ROOT / rel
-    href = rel
-    if (REPO_ROOT / "docs").is_dir():
-        try:
-            href = os.path.relpath(target, Path(out_dir).resolve()).replace(os.sep, "/")
-        except ValueError:  # another drive (Windows)
-            href = rel
-    return ("a", rel, href)
+    """A link to one of the project's documents (`rel`: "docs/model.md") as the report's folder
+    holds it: write_pages copies each linked page into out_dir/docs/ (bundle_docs), so that the
+    link works wherever the folder is moved or copied. Plain text where the page is not found."""
+    if not (DOCS_ROOT / Path(rel).relative_to("docs")).is_file():
+        return ("code", rel)
+    return ("a", rel, rel)
+
+
+# a Markdown link's target: ](target) or ](target#anchor)
+_MD_LINK = re.compile(r"\]\(([^)#\s]+)(?:#[^)\s]*)?\)")
+
+
+def bundle_docs(out_dir: Path, hrefs: Iterable[str]) -> list:
+    """Copies the documents `hrefs` ("docs/NAME.md") link, with every document of docs/ those
+    link in turn, into out_dir/docs/; returns the paths written."""
+    todo = [h[len("docs/"):] for h in hrefs if h.startswith("docs/")]
+    done: set = set()
+    written = []
+    while todo:
+        name = todo.pop()
+        source = (DOCS_ROOT / name).resolve()
+        if name in done or not source.is_file() or not source.is_relative_to(DOCS_ROOT.resolve()):
+            continue
+        done.add(name)
+        target = out_dir / "docs" / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        data = source.read_bytes()
+        written.append(write_whole(target, data))
+        if name.endswith(".md"):
+            base = Path(name).parent
+            todo += [(base / m).as_posix() for m in _MD_LINK.findall(data.decode("utf-8"))
+                     if "://" not in m and not m.startswith("/")]
+    return written
+
+
+def _links(blocks: Sequence) -> list:
+    """The targets of the links in `blocks` (paragraphs and bullet lists)."""
+    spans = []
+    for b in blocks:
+        if isinstance(b, Para):
+            spans += b.spans
+        elif isinstance(b, Bullets):
+            spans += [s for item in b.items for s in item]
+    return [s[2] for s in spans if isinstance(s, tuple) and s[0] == "a"]
 
 
 def write_pages(out_dir: Path, title: str, intro: list, sections: list) -> list:
-    """Writes report.html and report.md, each whole; returns their paths."""
+    """Writes report.html and report.md, each whole, and the documents they link into
+    out_dir/docs/ (bundle_docs); returns the paths of the two pages."""
+    links = _links(intro) + [h for s in sections for h in _links(s.blocks)]
+    bundle_docs(Path(out_dir), links)
     html_path = write_whole(out_dir / "report.html", render_html(title, intro, sections))
     md_path = write_whole(out_dir / "report.md", render_markdown(title, intro, sections))
     return [html_path, md_path]

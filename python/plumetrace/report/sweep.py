@@ -7,10 +7,11 @@ OUT/report.html (self-contained), OUT/report.md, OUT/report.csv (one row per poi
 OUT/figures/sweep_NAME.png. `plumetrace report SWEEP.toml --store S` runs it; from Python,
 ``plumetrace.report(...)`` does the same from a store or from the rows of ``plumetrace.sweep``.
 
-Per sweep: success rate with its Wilson 95% interval and the distance overhead of the successful
-runs with its t-based 95% interval (the numbers `plumetrace sweep` prints), against the first
-axis; a second axis is drawn as colours (hue) beside each other, or as one row of panels per
-value when it has more than MAX_HUE values; each further axis gives one row of panels per
+Per sweep: success rate with its Wilson 95% interval and the mean distance overhead of the
+successful runs with its percentile bootstrap 95% interval (the numbers `plumetrace sweep`
+prints; within the sample's range, so never below 1), against the first axis; a second axis is
+drawn as colours (hue) beside each other, or as one row of panels per value when it has more
+than MAX_HUE values; each further axis gives one row of panels per
 combination of its values (nothing is pooled), up to MAX_FACETS rows. The title states what the
 data say: where success is highest and lowest, and whether the 95% intervals separate them.
 Points with fewer runs than their sweep asks for are named, with the command that computes them.
@@ -37,6 +38,7 @@ from .data import (DASH, Point, ReportError, _Checker, _json_type, _load_json, f
                    fmt_median, fmt_overhead, fmt_rate, fmt_value, write_whole)
 from .figures import sweep_figure
 from .page import Bullets, Fig, Para, Pre, Section, Table, _doc_link, write_pages
+from .wording import counted, verb
 
 RESULTS_NAME = "results.json"
 RESULTS_FORMAT = 1
@@ -60,7 +62,7 @@ class AxisView:
 class PointView:
     index: int
     values: tuple
-    point: Point  # the overhead with its t interval
+    point: Point  # the overhead with its bootstrap interval
     stats: dict
 
 
@@ -161,7 +163,7 @@ def sweep_views(results: dict) -> list:
                 index = keys.index(_value_key(fixed)) if _value_key(fixed) in keys else None
             axes.append(AxisView(a["key"], a.get("label") or a["key"], list(a["values"]), index))
         points = [PointView(int(p.get("index", k)), tuple(p["values"]),
-                            Point.from_json(p["stats"], t_interval=True), p["stats"])
+                            Point.from_json(p["stats"]), p["stats"])
                   for k, p in enumerate(s["points"])]
         views.append(SweepView(str(s["name"]), s.get("title") or "", s.get("file") or "",
                                s.get("seed"), int(s["runs_per_point"]), axes, points))
@@ -184,8 +186,11 @@ def results_from_rows(rows) -> dict:
                                                      and math.isnan(r[k])) else r[k]
         stats = {k: number(k) for k in ("runs", "successes", "walls", "timeouts", "gave_up",
                                          "success_rate", "success_lo", "success_hi")}
+        # why: summary()'s interval is the bootstrap's, given under both names as the C++
+        # writes it
         stats["overhead"] = {"n": r["overhead_n"], "mean": number("overhead_mean"),
                              "lo": number("overhead_lo"), "hi": number("overhead_hi"),
+                             "boot_lo": number("overhead_lo"), "boot_hi": number("overhead_hi"),
                              "median": number("overhead_median"), "q1": number("overhead_q1"),
                              "q3": number("overhead_q3")}
         points.append({"index": r["point"], "values": [r[k] for k in keys], "stats": stats})
@@ -266,8 +271,8 @@ def overhead_finding(s: SweepView) -> Optional[str]:
     high = max(pts, key=lambda p: p.point.oh_mean)
     a, b = low.point, high.point
     apart = None if None in (a.oh_hi, b.oh_lo) else a.oh_hi < b.oh_lo
-    tail = ("" if apart is None else " (t 95% intervals apart)" if apart else
-            ", within each other's t 95% intervals")
+    tail = ("" if apart is None else " (bootstrap 95% intervals apart)" if apart else
+            ", within each other's bootstrap 95% intervals")
     return (f"the successful runs' distance overhead d_t/d_u is lowest at {where(s, low)} "
             f"({fmt_overhead(a)}) and highest at {where(s, high)} ({fmt_overhead(b)}){tail}")
 
@@ -371,7 +376,8 @@ def _safe(name: str) -> str:
 def table_rows(s: SweepView) -> tuple:
     header = [a.label for a in s.axes] + ["runs", "success [Wilson 95%]",
                                           "success / wall / timeout / gave up",
-                                          "overhead [t 95%]", "median overhead [IQR]"]
+                                          "overhead [bootstrap 95%]",
+                                          "median overhead [IQR]"]
     rows, classes = [], []
     for p in s.points:
         pt = p.point
@@ -403,8 +409,9 @@ def write_csv(out: Path, views: list) -> Path:
             cells = {"runs": st.get("runs"), "runs_per_point": s.runs_per_point,
                      **{k: st.get(k) for k in ("successes", "walls", "timeouts", "gave_up",
                                                "success_rate", "success_lo", "success_hi")},
-                     **{f"overhead_{k}": oh.get(k) for k in ("n", "mean", "lo", "hi", "median",
-                                                             "q1", "q3")}}
+                     **{f"overhead_{k}": oh.get(k) for k in ("n", "mean", "median", "q1",
+                                                             "q3")},
+                     "overhead_lo": p.point.oh_lo, "overhead_hi": p.point.oh_hi}
             w.writerow([s.name, p.index]
                        + [_csv_cell(values[k]) if k in values else "" for k in keys]
                        + [_csv_cell(cells[k]) for k in CSV_COLUMNS])
@@ -452,17 +459,19 @@ def build_sweep_report(out_dir, results: Optional[dict] = None,
         if oh:
             findings.append([lead + _capital(oh) + "."])
         findings += per_value_findings(s)
-    intro = [Para(["What the data say (success rates with Wilson 95% intervals; the distance "
-                   "overhead d_t/d_u of the successful runs with t-based 95% intervals, the "
-                   "numbers plumetrace sweep prints; ", _doc_link(out, "docs/experiments.md"),
-                   "):"]), Bullets(findings)]
+    intro = [Para(["What the data say (success rates with Wilson 95% intervals; the mean "
+                   "distance overhead d_t/d_u of the successful runs with percentile bootstrap "
+                   "95% intervals, the numbers plumetrace sweep prints; ",
+                   _doc_link(out, "docs/experiments.md"), "):"]), Bullets(findings)]
     missing = [(s, p) for s in views for p in s.incomplete]
     if missing:
+        k = len(missing)
+        their = verb(k, "its", "their")
         intro.append(Para([("b", "Incomplete:"),
-                           f" {len(missing)} of {sum(len(s.points) for s in views)} points have "
-                           "fewer runs than their sweep asks for; their numbers rest on the runs "
-                           "stored (see each sweep's section, and below how to compute the "
-                           "rest)."]))
+                           f" {counted(k, sum(len(s.points) for s in views), 'point', 'points')} "
+                           f"{verb(k, 'has', 'have')} fewer runs than {their} sweep asks for; "
+                           f"{their} numbers rest on the runs stored (see each sweep's section, "
+                           "and below how to compute the rest)."]))
     if made_from:
         intro.append(Para([made_from]))
 
@@ -479,7 +488,8 @@ def build_sweep_report(out_dir, results: Optional[dict] = None,
             written.append(png)
             blocks.append(Fig(path=png, rel=png.relative_to(out).as_posix(),
                               caption=f"{s.title or s.name}: success rate (Wilson 95%) and "
-                                      "distance overhead of the successful runs (t 95%) against "
+                                      "mean distance overhead of the successful runs "
+                                      "(bootstrap 95%) against "
                                       f"{x_axis.key}" + (f", one colour per {hue}" if hue
                                                             else "") + ".",
                               alt=f"success rate and overhead panels of sweep {s.name}"))

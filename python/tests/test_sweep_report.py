@@ -102,7 +102,7 @@ def number(text):
 def test_summary_agrees_exactly_with_the_command_line_summary(tmp_path):
     rows = pt.sweep(GOLDEN, runs=6)
     summary = rows.summary()
-    out = cli("sweep", GOLDEN, "--runs", 6, "--out", tmp_path, "--quiet").stdout
+    out = cli("sweep", GOLDEN, "--runs", 6, "--out", tmp_path).stdout
     theirs = read_csv(tmp_path / "summary.csv")
     assert len(summary) == len(theirs) == 6
     for mine, row in zip(summary, theirs):
@@ -111,8 +111,8 @@ def test_summary_agrees_exactly_with_the_command_line_summary(tmp_path):
         assert mine["wind_sensor.sigma_a"] == float(row["wind_sensor.sigma_a"])
         for key in ("runs", "successes", "walls", "timeouts", "gave_up", "overhead_n"):
             assert mine[key] == int(row[key]), key
-        for key in ("success_rate", "success_lo", "success_hi", "overhead_mean",
-                    "overhead_median", "overhead_q1", "overhead_q3"):
+        for key in ("success_rate", "success_lo", "success_hi", "overhead_mean", "overhead_lo",
+                    "overhead_hi", "overhead_median", "overhead_q1", "overhead_q3"):
             a, b = mine[key], number(row[key])
             assert a == b or (math.isnan(a) and math.isnan(b)), (key, a, b)  # bit for bit
     # the overhead's interval is the C++ percentile bootstrap's (results.json's boot_lo, boot_hi)
@@ -127,7 +127,8 @@ def test_summary_agrees_exactly_with_the_command_line_summary(tmp_path):
     printed = (f"{first['success_rate'][0]:.2f} [{first['success_lo'][0]:.2f}, "
                f"{first['success_hi'][0]:.2f}]")
     assert printed in out
-    assert f"{first['overhead_mean'][0]:.3f} [" in out
+    assert (f"{first['overhead_mean'][0]:.3f} [{first['overhead_lo'][0]:.3f}, "
+            f"{first['overhead_hi'][0]:.3f}]") in out
 
 
 def test_summary_counts_each_outcome_and_a_point_without_success_has_no_overhead():

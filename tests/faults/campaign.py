@@ -7,12 +7,14 @@ names the cause. Random points are drawn from a seeded generator (PLUMETRACE_FAU
 13); where the process is killed depends on timing as well, so every outcome is checked, not one.
 
     campaign.py CASE...    CASE: kill_sweep kill_merge kill_mpi concurrent full_disk damage
-                           readonly (or all)
+                           readonly merge_onto_foreign study_escape study_foreign_report
+                           concurrent_out (or all)
 
 Environment: PLUMETRACE_CLI (the command), PLUMETRACE_MPIEXEC (mpirun; empty: no MPI build).
 Exit 0 when every check holds, 1 otherwise, 77 when a case cannot run here (it says why).
 """
 
+import json
 import os
 import random
 import re
@@ -373,8 +375,109 @@ class Campaign:
             self.check(f.read() == before, "readonly: the store changed")
         os.chmod(folder, 0o755)
 
+    # --- issue 22: inputs that must neither destroy, escape nor run anything ---------------------
 
-CASES = ["kill_sweep", "kill_merge", "kill_mpi", "concurrent", "full_disk", "damage", "readonly"]
+    def part_store(self):
+        """A shard's store of the two-plume sweep, made once."""
+        if not hasattr(self, "_part"):
+            self._part = self.path("part.sqlite")
+            code, _, err = self.run(["sweep", SWEEP, "--runs", SHORT, "--shard", "1/2", "--quiet",
+                                     "--store", self._part])
+            assert code == 0, err
+        return self._part
+
+    def merge_onto_foreign(self):
+        """G2: merge onto a file that is not a store: refused, and the file kept byte for byte."""
+        part = self.part_store()
+        contents = [b"x", b"my notes\n", b"\0" * 4096, b"SQLite format 3\0" + bytes(100)]
+        contents += [bytes(self.rng.randrange(256) for _ in range(self.rng.randrange(1, 9000)))
+                     for _ in range(6)]
+        for data in contents:
+            target = self.path("notes.txt")
+            with open(target, "wb") as f:
+                f.write(data)
+            code, _, err = self.run(["merge", part, "--store", target])
+            self.check(code == 2, "merge_onto_foreign: %d bytes: exit %d: %s" % (len(data), code, err))
+            kept = os.path.exists(target) and open(target, "rb").read() == data
+            self.check(kept, "merge_onto_foreign: a %d-byte file was changed or deleted" % len(data))
+
+    def study_folder(self, study):
+        """A study folder holding the two-plume sweep as k.toml and `study` as study.toml."""
+        folder = self.path("study")
+        os.makedirs(folder)
+        shutil.copyfile(SWEEP, os.path.join(folder, "k.toml"))
+        with open(os.path.join(folder, "study.toml"), "w") as f:
+            f.write(study)
+        return folder
+
+    def study_escape(self):
+        """G3: a study's name leads nowhere but out/NAME, whatever it holds."""
+        names = ["../../escaped", "a/b", ".", "..", "/abs", "a\nb", "-x", ".hidden", "ok"]
+        letters = "ab./\\-_ \n"
+        names += ["".join(self.rng.choice(letters) for _ in range(self.rng.randrange(1, 9)))
+                  for _ in range(12)]
+        for name in names:
+            sandbox = self.path("sandbox")
+            cwd = os.path.join(sandbox, "a", "b")
+            os.makedirs(cwd)
+            # why: a JSON string is a TOML basic string, escapes and all
+            folder = self.study_folder('name = %s\nsets = ["k.toml"]\n' % json.dumps(name))
+            p = subprocess.run([CLI, "study", folder, "--runs", "1", "--quiet"], cwd=cwd,
+                               capture_output=True, text=True, timeout=LIMIT_S)
+            made = sorted(os.path.relpath(os.path.join(d, f), sandbox)
+                          for d, _, files in os.walk(sandbox) for f in files)
+            if p.returncode == 0:
+                inside = all(m.startswith(os.path.join("a", "b", "out", "")) for m in made)
+                self.check(inside and re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.-]*", name),
+                           "study_escape: %r ran and wrote %s" % (name, made))
+            else:
+                self.check(p.returncode == 2 and "study.toml: name" in p.stderr and not made,
+                           "study_escape: %r: exit %d, wrote %s: %s" % (name, p.returncode, made,
+                                                                       p.stderr))
+
+    def study_foreign_report(self):
+        """G4: no study.toml makes plumetrace run code of the current folder or of the system."""
+        cwd = self.path("cwd")
+        os.makedirs(os.path.join(cwd, "plumetrace"))
+        marker = os.path.join(cwd, "RAN")
+        for name in ("evilmod.py", "this.py", os.path.join("plumetrace", "__init__.py"),
+                     os.path.join("plumetrace", "evilmod.py")):
+            with open(os.path.join(cwd, name), "w") as f:
+                f.write("open(%r, 'w').write('ran')\n" % marker)
+        reports = ["this", "evilmod", "os", "plumetrace.evilmod", "../evilmod.py",
+                   os.path.join(cwd, "evilmod.py"), "evilmod.py", "plumetrace/evilmod.py",
+                   "plumetrace..x", ".plumetrace.x", "plumetrace.studies.meander"]
+        for report in reports:
+            folder = self.study_folder('name = "s"\nsets = ["k.toml"]\nreport = "%s"\n' % report)
+            p = subprocess.run([CLI, "study", folder, "--runs", "1", "--quiet", "--out", "o"],
+                               cwd=cwd, capture_output=True, text=True, timeout=LIMIT_S)
+            self.check(p.returncode in (0, 2, 3),
+                       "study_foreign_report: %r: exit %d: %s" % (report, p.returncode, p.stderr))
+            self.check(not os.path.exists(marker),
+                       "study_foreign_report: %r ran code of the current folder" % report)
+
+    def concurrent_out(self):
+        """G19: sweeps on one store and one --out at once all finish with the same exports."""
+        self.runs = MID
+        clean = self.clean()[1]
+        for _ in range(2):
+            store, out = self.path("shared.sqlite"), self.path("shared-out")
+            procs = [subprocess.Popen([CLI] + self.sweep_args(store, out, ["--threads", str(t)]),
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                     for t in (1, 2, 1)]
+            for p in procs:
+                _, err = p.communicate(timeout=LIMIT_S)
+                self.check(p.returncode == 0, "concurrent_out: exit %d: %s" % (p.returncode, err))
+            text = ""
+            for name in ("runs.csv", "summary.csv", "results.json"):
+                with open(os.path.join(out, name), "rb") as f:
+                    text += f.read().decode("utf-8", errors="backslashreplace")
+            self.check(text == clean, "concurrent_out: the shared --out's exports differ")
+            left = [f for f in os.listdir(out) if f.endswith(".part")]
+            self.check(not left, "concurrent_out: left behind: %s" % left)
+
+CASES = ["kill_sweep", "kill_merge", "kill_mpi", "concurrent", "full_disk", "damage", "readonly",
+         "merge_onto_foreign", "study_escape", "study_foreign_report", "concurrent_out"]
 
 
 def main(argv):

@@ -141,8 +141,8 @@ std::vector<ExpandedSweep> StoredSweepOptions::sweeps() {
     std::optional<std::vector<std::string>> recorded;
     for (const auto& def : defs) {
       const auto it = info.sets.find(def.name);
-      const std::vector<std::string> mine = it == info.sets.end() ? std::vector<std::string>{}
-                                                                  : it->second;
+      const std::vector<std::string> mine =
+          it == info.sets.end() ? std::vector<std::string>{} : it->second;
       if (recorded && *recorded != mine) {
         throw ConfigError("results store '" + store +
                           "' recorded other --set values for its sweeps; give --set");

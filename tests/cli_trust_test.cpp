@@ -76,9 +76,10 @@ TEST(CliTrust, MeanderKeysBeyondTheStabilityBoundAreRefusedBeforeAnyRun) {
 // G2: merge removes only a store it created; any other file given as --store is kept as it was
 TEST(CliTrust, MergeRemovesOnlyAStoreItCreated) {
   const std::string dir = temp_dir("g2");
-  ASSERT_EQ(cli_in(dir, "sweep " + kTwoPlumes + " --runs 1 --shard 1/2 --store part1.sqlite --quiet")
-                .code,
-            0);
+  ASSERT_EQ(
+      cli_in(dir, "sweep " + kTwoPlumes + " --runs 1 --shard 1/2 --store part1.sqlite --quiet")
+          .code,
+      0);
   for (const std::string& text : {std::string("x"), std::string("my notes\n"), std::string()}) {
     write(dir + "/notes.txt", text);
     const Output o = cli_in(dir, "merge part1.sqlite --store notes.txt");
@@ -94,8 +95,9 @@ TEST(CliTrust, MergeRemovesOnlyAStoreItCreated) {
   // a target the merge created is removed when the merge fails (a part of another definition)
   const std::string other = testing::write_temp(
       "other", ".toml", "name = \"two\"\nruns = 1\n[[axis]]\nkey = \"sim.dt\"\nvalues = [0.032]\n");
-  ASSERT_EQ(cli_in(dir, "sweep " + other + " --set supervisor.timeout=1 --store other.sqlite "
-                        "--out o --quiet")
+  ASSERT_EQ(cli_in(dir, "sweep " + other +
+                            " --set supervisor.timeout=1 --store other.sqlite "
+                            "--out o --quiet")
                 .code,
             0);
   EXPECT_EQ(cli_in(dir, "merge part1.sqlite other.sqlite --store new.sqlite").code, 2);
@@ -160,8 +162,7 @@ TEST(CliTrust, TraceStateNamesAreBoundedWhereTracesAreRead) {
   trace["steps"]["state_names"][0] = std::string(1 << 20, 's');
   const std::string path = testing::write_temp("big-state", ".json", trace.dump());
   expect_refused(cli("view " + path + " -o " + path + ".html"),
-                 "steps.state_names[0]: a controller's state name must have 1 to 64 bytes",
-                 "view");
+                 "steps.state_names[0]: a controller's state name must have 1 to 64 bytes", "view");
   trace["steps"]["state_names"][0] = "a\x1b[31m";
   const std::string escape = testing::write_temp("escape-state", ".json", trace.dump());
   expect_refused(cli("view " + escape + " -o " + escape + ".html"), "control character", "view");
@@ -183,17 +184,16 @@ TEST(CliTrust, OutOfMemoryAdviceFitsTheCommand) {
 // G10: a campaign that names one sweep twice (one file twice, or two files of one sweep name)
 // is refused naming both files, before anything is run or written
 TEST(CliTrust, ACampaignNamingASweepTwiceIsRefusedNamingBothFiles) {
-  const std::string dir =
-      study_folder("name = \"s\"\nsets = [\"k.toml\", \"./k.toml\"]\n");
+  const std::string dir = study_folder("name = \"s\"\nsets = [\"k.toml\", \"./k.toml\"]\n");
   expect_refused(cli("study " + dir + " --runs 1 --out " + dir + "/o --quiet"),
                  "sweep file '" + dir + "/k.toml' is given twice", "study");
   EXPECT_FALSE(fs::exists(dir + "/o"));
   fs::copy_file(kTwoPlumes, dir + "/b.toml");
   const std::string store = dir + "/s.sqlite";
-  ASSERT_EQ(cli("sweep " + kTwoPlumes + " --runs 1 --store " + store + " --out " + dir +
-                "/o1 --quiet")
-                .code,
-            0);
+  ASSERT_EQ(
+      cli("sweep " + kTwoPlumes + " --runs 1 --store " + store + " --out " + dir + "/o1 --quiet")
+          .code,
+      0);
   for (const std::string command : {"export", "report"}) {
     expect_refused(cli(command + " " + dir + "/k.toml " + dir + "/b.toml --store " + store +
                        " --out " + dir + "/o2"),
@@ -205,8 +205,8 @@ TEST(CliTrust, ACampaignNamingASweepTwiceIsRefusedNamingBothFiles) {
 // G13: an empty name in --presets is a typo, refused, not a reading dropped
 TEST(CliTrust, EmptyPresetNamesAreRefused) {
   for (const std::string presets : {"printed,,plugin", "printed,", ",printed", ""}) {
-    expect_refused(cli("reproduce --runs 1 --out " + testing::temp_path("rp", "") +
-                       " --presets '" + presets + "'"),
+    expect_refused(cli("reproduce --runs 1 --out " + testing::temp_path("rp", "") + " --presets '" +
+                       presets + "'"),
                    "--presets", presets);
   }
 }
@@ -235,8 +235,7 @@ TEST(CliTrust, ControlCharactersInNamesAreRefused) {
 TEST(CliTrust, SpacesAroundAutoAreRefusedLikeANumber) {
   for (const std::string value : {"auto ", " auto", "1 ", "\"auto \""}) {
     expect_refused(cli("run --json --set 'sim.warmup=" + value + "'"), "sim.warmup", value);
-    expect_refused(cli("run --json --set 'plume.capacity=" + value + "'"), "plume.capacity",
-                   value);
+    expect_refused(cli("run --json --set 'plume.capacity=" + value + "'"), "plume.capacity", value);
   }
 }
 
@@ -272,7 +271,8 @@ TEST(CliTrust, ScenariosOfLargeWorkOrASensorOutsideThePlumeAreWarnedAbout) {
             std::string::npos)
       << high.err;
   // the paper's setups say nothing
-  for (const char* scenario : {"lochmatter2008", "paper-literal", "meander-weak", "meander-strong"}) {
+  for (const char* scenario :
+       {"lochmatter2008", "paper-literal", "meander-weak", "meander-strong"}) {
     const Output o =
         cli(std::string("config ") + PLUMETRACE_SOURCE_DIR "/scenarios/" + scenario + ".toml");
     EXPECT_EQ(o.err, "") << scenario;
@@ -296,7 +296,8 @@ TEST(CliTrust, WritersOfOneOutputFolderAtOnceAllFinishWithTheSameFiles) {
   // a command line run `count` times at once; the exit codes, in order
   const auto at_once = [](const std::string& command, int count) {
     std::string script = "bash -c 'pids=(); for k in $(seq " + std::to_string(count) + "); do " +
-                         command + " >/dev/null & pids+=($!); done; for p in ${pids[@]}; do wait $p; " +
+                         command +
+                         " >/dev/null & pids+=($!); done; for p in ${pids[@]}; do wait $p; " +
                          "printf \"%s \" $?; done'";
     return testing::run_command(script).out;
   };
@@ -324,9 +325,8 @@ TEST(CliTrust, ReproducesCommandLineIsRecordedShellQuoted) {
   EXPECT_EQ(command,
             "plumetrace reproduce --runs 1 --presets none --quiet --out 'rp odd '\\''q'\\'' ü'");
   // the shell reads it back as the words given
-  const Output words =
-      testing::run_command("bash -c 'for w; do printf \"%s|\" \"$w\"; done' _ " +
-                           command.substr(std::string("plumetrace ").size()));
+  const Output words = testing::run_command("bash -c 'for w; do printf \"%s|\" \"$w\"; done' _ " +
+                                            command.substr(std::string("plumetrace ").size()));
   EXPECT_EQ(words.out, "reproduce|--runs|1|--presets|none|--quiet|--out|rp odd 'q' ü|");
 }
 
@@ -337,7 +337,8 @@ TEST(CliTrust, NoPrintedOverheadBoundIsBelowOne) {
   int bounds = 0;
   for (const int runs : {1, 2, 5}) {
     const std::string out = testing::temp_path("oh", "");
-    const Output o = cli("sweep " + kTwoPlumes + " --runs " + std::to_string(runs) + " --out " + out);
+    const Output o =
+        cli("sweep " + kTwoPlumes + " --runs " + std::to_string(runs) + " --out " + out);
     ASSERT_EQ(o.code, 0) << o.err;
     std::istringstream lines(o.out);
     for (std::string line; std::getline(lines, line);) {
@@ -399,9 +400,9 @@ TEST(CliTrust, TheSummaryTableLinesUpAndQuietPrintsNone) {
 TEST(CliTrust, ExportAndReportUseTheSetTheStoreRecorded) {
   const std::string dir = temp_dir("sets");
   const std::string set = " --set wind_sensor.sigma_a=0.3";
-  ASSERT_EQ(cli_in(dir, "sweep " + kTwoPlumes + " --runs 2 --store s.sqlite --out o --quiet" + set)
-                .code,
-            0);
+  ASSERT_EQ(
+      cli_in(dir, "sweep " + kTwoPlumes + " --runs 2 --store s.sqlite --out o --quiet" + set).code,
+      0);
   const Output o = cli_in(dir, "export " + kTwoPlumes + " --store s.sqlite --out e --runs 2");
   EXPECT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.err.find("using the --set the store recorded: --set wind_sensor.sigma_a=0.3"),

@@ -53,7 +53,10 @@ struct ViewCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
-  std::string memory_advice() const override { return "the trace is held in memory with its page: lower --max-frames and --max-snapshots, or view a shorter trace"; }
+  std::string memory_advice() const override {
+    return "the trace is held in memory with its page: lower --max-frames and --max-snapshots, or "
+           "view a shorter trace";
+  }
 };
 
 /// `plumetrace probe [SCENARIO] --points ...`: the plume alone, sampled at points.
@@ -108,7 +111,9 @@ struct ExportCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
-  std::string memory_advice() const override { return "the store's runs are read into memory: export on a machine with more memory"; }
+  std::string memory_advice() const override {
+    return "the store's runs are read into memory: export on a machine with more memory";
+  }
 };
 
 /// `plumetrace report SWEEP.toml... --store FILE [--out DIR]`: the report of any sweep.
@@ -117,7 +122,9 @@ struct ReportCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
-  std::string memory_advice() const override { return "the store's runs are read into memory: report on a machine with more memory"; }
+  std::string memory_advice() const override {
+    return "the store's runs are read into memory: report on a machine with more memory";
+  }
 };
 
 /// `plumetrace merge PART... --store FILE`: the shards' stores into one.
@@ -127,7 +134,9 @@ struct MergeCommand final : Command {
 
   CLI::App* add(CLI::App& app) override;
   int run() override;
-  std::string memory_advice() const override { return "the parts' runs are read into memory: merge fewer parts at a time"; }
+  std::string memory_advice() const override {
+    return "the parts' runs are read into memory: merge fewer parts at a time";
+  }
 };
 
 /// `plumetrace reproduce ...`: the paper's study (studies/lochmatter2008) and its report.

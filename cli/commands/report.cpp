@@ -3,8 +3,8 @@
 
 #include "campaign_run.hpp"
 #include "commands.hpp"
-#include "plumetrace/core/files.hpp"
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/io/exports.hpp"
 #include "plumetrace/io/sweep_file.hpp"

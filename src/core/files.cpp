@@ -117,8 +117,7 @@ std::string default_output_folder(const std::string& name, const std::string& fi
     throw ConfigError(file + ": " + key + ": '" + name +
                       "' cannot be the outputs' folder under out/ (letters, digits, '_', '-' and "
                       "'.', not first, at most " +
-                      std::to_string(kMaxFolderName) +
-                      " characters); rename it or give --out");
+                      std::to_string(kMaxFolderName) + " characters); rename it or give --out");
   }
   return "out/" + name;
 }
@@ -162,8 +161,8 @@ void check_printable(std::string_view text, const std::string& where, const std:
   if (at == std::string_view::npos) return;
   char code[8];
   std::snprintf(code, sizeof code, "0x%02x", static_cast<unsigned char>(text[at]));
-  throw ConfigError(where + ": " + key + ": holds a control character (" + code +
-                    " at byte " + std::to_string(at) +
+  throw ConfigError(where + ": " + key + ": holds a control character (" + code + " at byte " +
+                    std::to_string(at) +
                     "); names and titles are printed on terminals and written into CSV and HTML");
 }
 

@@ -66,10 +66,10 @@ std::string summary_table(const std::vector<ExpandedSweep>& sweeps, const std::v
       const PointStats st = summarize(point_runs(rows, sweep.def.name, p.index, runs));
       // why: the overhead d_t/d_u is at least 1; the percentile bootstrap lies within the
       // sample, where a t interval of a few runs reached below 0 (issue 22)
-      cells.push_back({sweep.def.name, values_text(sweep, p), std::to_string(st.runs),
-                       interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2),
-                       interval_text(st.overhead.mean, st.overhead_bootstrap.lo,
-                                     st.overhead_bootstrap.hi, 3)});
+      cells.push_back(
+          {sweep.def.name, values_text(sweep, p), std::to_string(st.runs),
+           interval_text(st.success_rate, st.success_ci.lo, st.success_ci.hi, 2),
+           interval_text(st.overhead.mean, st.overhead_bootstrap.lo, st.overhead_bootstrap.hi, 3)});
     }
   }
   // characters, not bytes: a UTF-8 continuation byte starts no character

@@ -45,8 +45,10 @@ json stats_json(const PointStats& p) {
           {"overhead",
            {{"n", p.overhead.n},
             {"mean", number_or_null(p.overhead.mean)},
-            {"lo", number_or_null(p.overhead.lo)},
-            {"hi", number_or_null(p.overhead.hi)},
+            // why: the interval printed everywhere, the bootstrap (issue 22); boot_lo and boot_hi
+            // repeat it for readers of files of 0.3.0, whose lo and hi were t intervals
+            {"lo", number_or_null(p.overhead_bootstrap.lo)},
+            {"hi", number_or_null(p.overhead_bootstrap.hi)},
             {"boot_lo", number_or_null(p.overhead_bootstrap.lo)},
             {"boot_hi", number_or_null(p.overhead_bootstrap.hi)},
             {"median", number_or_null(p.overhead_quartiles.median)},

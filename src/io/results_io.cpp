@@ -163,10 +163,10 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
           << st.gave_up << ',' << csv_number(st.success_rate) << ',' << csv_number(st.success_ci.lo)
           << ',' << csv_number(st.success_ci.hi) << ',' << st.overhead.n << ','
           << csv_number(st.overhead.mean) << ',' << csv_number(st.overhead_bootstrap.lo) << ','
-          << csv_number(st.overhead_bootstrap.hi) << ','
-          << csv_number(st.overhead_quartiles.median) << ','
-          << csv_number(st.overhead_quartiles.q1) << ',' << csv_number(st.overhead_quartiles.q3)
-          << ',' << csv_number(st.mean_time) << ',' << csv_number(st.mean_losses) << '\n';
+          << csv_number(st.overhead_bootstrap.hi) << ',' << csv_number(st.overhead_quartiles.median)
+          << ',' << csv_number(st.overhead_quartiles.q1) << ','
+          << csv_number(st.overhead_quartiles.q3) << ',' << csv_number(st.mean_time) << ','
+          << csv_number(st.mean_losses) << '\n';
     }
   }
   file.commit();

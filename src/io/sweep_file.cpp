@@ -92,7 +92,8 @@ void check_sweep_def(const SweepDef& def, const std::string& where) {
   // why: names, titles and labels reach terminals, CSV and HTML (issue 22, G14)
   check_printable(def.name, where, "name");
   check_printable(def.title, where, "title");
-  for (const auto& axis : def.axes) check_printable(axis.label, where, "axis " + axis.key + ": label");
+  for (const auto& axis : def.axes)
+    check_printable(axis.label, where, "axis " + axis.key + ": label");
   if (def.axes.empty()) fail("no [[axis]]: a sweep varies at least one key");
   // unknown axis keys and values of the wrong type are found here, naming the axis
   Scenario probe;

@@ -582,9 +582,8 @@ double run_work(const Scenario& scenario) {
   const double vx = scenario.wind.velocity.x;
   const double crossing =
       vx > 0.0 ? (scenario.arena.x_max - scenario.arena.x_min) / vx : scenario.supervisor.timeout;
-  const double alive = plume.lifetime == Lifetime::kRing
-                           ? static_cast<double>(plume.capacity)
-                           : plume.release_rate * crossing;
+  const double alive = plume.lifetime == Lifetime::kRing ? static_cast<double>(plume.capacity)
+                                                         : plume.release_rate * crossing;
   return alive * (scenario.sim.warmup + scenario.supervisor.timeout) / scenario.sim.dt;
 }
 
@@ -605,8 +604,8 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario) {
              : "the filaments plume.release_rate = " + bound_text(scenario.plume.release_rate) +
                    " /s keeps in the arena") +
         " over (sim.warmup + supervisor.timeout) / sim.dt = " +
-        sig((scenario.sim.warmup + scenario.supervisor.timeout) / scenario.sim.dt) +
-        " steps), " + sig(work / 6.1e7) +
+        sig((scenario.sim.warmup + scenario.supervisor.timeout) / scenario.sim.dt) + " steps), " +
+        sig(work / 6.1e7) +
         " times the paper's setup: minutes to hours per run at 3 to 10 ns per filament-step "
         "(docs/performance.md); lower plume.release_rate or plume.capacity, or "
         "supervisor.timeout");
@@ -669,10 +668,9 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario) {
   const double above = scenario.odor.height - source.z;
   if (std::abs(above) > spread) {
     out.push_back("the robot's odor sensor is " + cm(std::abs(above)) + " m " +
-                  (above > 0.0 ? "above" : "below") +
-                  " the source's centre (odor.height = " + cm(scenario.odor.height) +
-                  " m, source.z = " + cm(source.z) + " m), while the odor spreads about " +
-                  cm(spread) +
+                  (above > 0.0 ? "above" : "below") + " the source's centre (odor.height = " +
+                  cm(scenario.odor.height) + " m, source.z = " + cm(source.z) +
+                  " m), while the odor spreads about " + cm(spread) +
                   " m up and down where the robot starts: it may never perceive odor; set "
                   "odor.height nearer source.z");
   }

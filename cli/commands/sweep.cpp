@@ -87,7 +87,7 @@ int finish_sweep(const SweepPlan& plan, const Store& store, int runs, const Camp
     return 0;
   }
   const auto rows = store.rows();
-  std::filesystem::create_directories(plan.out);
+  make_output_folder(plan.out, "--out");
   write_exports(plan.out, plan.sweeps, rows, runs);
   if (!quiet) std::fputs(summary_table(plan.sweeps, rows, runs).c_str(), stdout);
   std::printf("%s; store %s; exports in %s/\n", counts().c_str(), store.path().c_str(),

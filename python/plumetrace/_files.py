@@ -65,14 +65,16 @@ def read_input(path, what, max_bytes=MAX_INPUT_BYTES):
     why: a FIFO named as an input would block open() and read() for ever, a device would be read
     without end, and a check of the type by name could be raced by a rename (issue 13, F8)."""
     def refuse(why):
-        return BadPath(f"cannot read {what} '{path}': {why}")
+        shown = os.fspath(path).replace("\0", "\\0")
+        return BadPath(f"cannot read {what} '{shown}': {why}")
 
+    # why: the operating system reads a path up to its first NUL
+    if "\0" in os.fspath(path):
+        raise refuse("the path holds a NUL character")
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
     except OSError as e:
         raise refuse(_cause(e)) from None
-    except ValueError as e:  # a NUL in the path
-        raise refuse(str(e)) from None
     try:
         st = os.fstat(fd)
         if not stat.S_ISREG(st.st_mode):

@@ -26,7 +26,9 @@ from test_calibrate import SETS, FakeEvaluation, paper_study, study_file, write 
 
 ROOT = Path(__file__).resolve().parents[2]
 SCENARIO = ROOT / "scenarios" / "lochmatter2008.toml"
-ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+# the package these tests import, with its C++ module (another test file may put the source
+# tree, without it, first on sys.path)
+ENV = dict(os.environ, PYTHONPATH=str(Path(pt.__file__).resolve().parents[1]))
 
 
 def calibrate_command(args, cwd, timeout=120, **kwargs):
@@ -299,7 +301,7 @@ def test_a_set_named_twice_is_refused_naming_it(tmp_path):
 def cpp_reading(path):
     """How the C++ reader (parse_toml_file, through the calibration study reader) takes a path:
     the reason it cannot read it, or None where it read it."""
-    prefix = f"cannot read study file '{path}': "
+    prefix = f"cannot read study file '{str(path).replace(chr(0), chr(92) + '0')}': "
     try:
         _core.read_calibration_study(str(path))
     except ValueError as e:
@@ -308,7 +310,7 @@ def cpp_reading(path):
 
 
 def python_reading(path, max_bytes=_files.MAX_INPUT_BYTES):
-    prefix = f"cannot read study file '{path}': "
+    prefix = f"cannot read study file '{str(path).replace(chr(0), chr(92) + '0')}': "
     try:
         _files.read_input(path, "study file", max_bytes)
     except _files.BadPath as e:
@@ -332,6 +334,7 @@ def test_the_cpp_and_python_input_readers_classify_hostile_inputs_alike(tmp_path
         "below a file": tmp_path / "a-file" / "x.toml",
         "unreadable": unreadable,  # readable where the tests run as root: both read it then
         "regular": tmp_path / "a-file",
+        "NUL in the path": Path(str(tmp_path / "a-file") + "\0junk"),
     }
     seen = {}
     for name, path in cases.items():
@@ -342,6 +345,7 @@ def test_the_cpp_and_python_input_readers_classify_hostile_inputs_alike(tmp_path
     assert seen["missing"][0] == "No such file or directory"
     assert seen["below a file"][0] == "Not a directory"
     assert seen["regular"] == (None, None)
+    assert seen["NUL in the path"][0] == "the path holds a NUL character"
 
 
 def test_the_cpp_and_python_input_readers_bound_the_size_alike(tmp_path):

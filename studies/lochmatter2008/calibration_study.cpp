@@ -409,6 +409,15 @@ std::vector<CalibrationUnknown> read_calibration_unknowns(const std::string& pat
 }
 
 CalibrationStudy read_calibration_study(const std::string& path) {
+  // why: the operating system reads a path up to its first NUL, so another file would be read
+  // (shown as \0: a message, a C string, would end there too)
+  if (const auto nul = path.find('\0'); nul != std::string::npos) {
+    std::string shown = path;
+    for (auto at = nul; at != std::string::npos; at = shown.find('\0', at)) {
+      shown.replace(at, 1, "\\0");
+    }
+    throw ConfigError("cannot read study file '" + shown + "': the path holds a NUL character");
+  }
   const toml::table doc = detail::parse_toml_file(path, "study file");
   const Where where("study file '" + path + "'");
   for (const auto& [k, node] : doc) {

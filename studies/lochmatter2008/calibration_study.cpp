@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <string_view>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/experiment/sweep.hpp"
@@ -37,9 +38,25 @@ bool contains(const std::vector<std::string>& items, const std::string& item) {
   return std::find(items.begin(), items.end(), item) != items.end();
 }
 
+// a text as a message shows it: control characters escaped (\xNN), at most `max` characters
+// why: a message goes to a terminal; a file's text must not move its cursor or colour it
+std::string printable(std::string_view text, std::size_t max = 80) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  for (const char c : text.substr(0, max)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      out += std::string("\\x") + kHex[byte >> 4] + kHex[byte & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return text.size() > max ? out + "..." : out;
+}
+
 // a TOML node as a message shows it: its value, or what it is
 std::string shown(const toml::node& node) {
-  if (const auto value = detail::toml_scalar(node)) return format_value(*value);
+  if (const auto value = detail::toml_scalar(node)) return printable(format_value(*value));
   if (node.is_array()) return "a list";
   return node.is_table() ? "a table" : "a date or time";
 }
@@ -106,8 +123,9 @@ class Where {
     if (node->is_integer()) return static_cast<std::int64_t>(node->as_integer()->get());
     if (!integer && node->is_floating_point()) {
       const double x = node->as_floating_point()->get();
-      if (!std::isfinite(x))
+      if (!std::isfinite(x)) {
         fail("'" + key + "': must be a finite number (got " + shown(*node) + ")");
+      }
       return x;
     }
     fail("'" + key + "': must be " + kind + " (got " + shown(*node) + ")");
@@ -224,8 +242,8 @@ void flatten_fixed(const toml::table& table, const std::string& prefix, const Wh
     const std::string key = prefix + std::string(k.str());
     if (const auto* sub = node.as_table()) {
       flatten_fixed(*sub, key + ".", where, out);
-    } else if (!out.emplace(key, where.scalar(node, "fixed." + key)).second) {
-      where.fail("'fixed." + key + "' is given twice");
+    } else if (!out.emplace(key, where.scalar(node, "fixed." + printable(key))).second) {
+      where.fail("'fixed." + printable(key) + "' is given twice");
     }
   }
 }
@@ -242,7 +260,7 @@ void restrict_to_evidence(std::vector<CalibrationUnknown>& unknowns, const Where
       if (!seen) values.push_back(e.value);
     }
     if (values.empty()) {
-      where.fail("'evidenced_only': unknown '" + u.name +
+      where.fail("'evidenced_only': unknown '" + printable(u.name) +
                  "' has no [[unknown.evidence]] entry in '" + unknowns_file + "'");
     }
     // why: `log` and `integer` stay as declared: they are part of the study's definition, which
@@ -266,10 +284,12 @@ std::vector<CalibrationUnknown> searched_unknowns(const toml::table& doc,
       if (!item.is_string()) where.fail("'search' must be a non-empty list of unknown names");
       const std::string name = item.as_string()->get();
       if (!contains(declared, name)) {
-        where.fail("'search' names unknown '" + name + "', which '" + study.unknowns_file +
-                   "' does not declare (it has: " + joined(declared) + ")");
+        where.fail("'search' names unknown '" + printable(name) + "', which '" +
+                   study.unknowns_file +
+                   "' does not declare (it has: " + printable(joined(declared), 1000) + ")");
       }
-      if (contains(search, name)) where.fail("'search' names unknown '" + name + "' twice");
+      if (contains(search, name))
+        where.fail("'search' names unknown '" + printable(name) + "' twice");
       search.push_back(name);
     }
   }
@@ -304,14 +324,15 @@ std::vector<std::string> study_sets(const toml::table& doc, const CalibrationStu
       if (!item.is_string()) bad();
       const std::string name = where.path_text(item, "sets");
       if (!names.empty() && !contains(names, name)) bad();
-      if (contains(sets, name)) where.fail("'sets' names set '" + name + "' twice");
+      if (contains(sets, name)) where.fail("'sets' names set '" + printable(name) + "' twice");
       sets.push_back(name);
     }
   }
   if (sets.empty()) where.fail("'sets' is missing, and no study.toml beside sets_dir lists them");
   for (const auto& name : sets) {
     if (!is_file(sets_dir / (name + ".toml"))) {
-      where.fail("'sets_dir': no sweep file " + name + ".toml in '" + study.sets_dir + "'");
+      where.fail("'sets_dir': no sweep file " + printable(name) + ".toml in '" + study.sets_dir +
+                 "'");
     }
   }
   return sets;
@@ -334,8 +355,8 @@ void read_truth(const toml::table& doc, CalibrationStudy& study, const Where& wh
     const std::string name(k.str());
     const bool searched = std::any_of(study.unknowns.begin(), study.unknowns.end(),
                                       [&](const CalibrationUnknown& u) { return u.name == name; });
-    if (!searched) where.fail("'truth' names '" + name + "', which is not searched");
-    study.truth.emplace_back(name, where.scalar(value, "truth." + name));
+    if (!searched) where.fail("'truth' names '" + printable(name) + "', which is not searched");
+    study.truth.emplace_back(name, where.scalar(value, "truth." + printable(name)));
   }
 }
 
@@ -346,7 +367,7 @@ void read_validation(const toml::table& doc, CalibrationStudy& study, const Wher
   const toml::table& val = node ? *node->as_table() : empty;
   for (const auto& [k, value] : val) {
     if (!contains(kValidationKeys, std::string(k.str()))) {
-      where.fail("unknown key 'validation." + std::string(k.str()) +
+      where.fail("unknown key 'validation." + printable(k.str()) +
                  "' (keys: " + joined(kValidationKeys) + ")");
     }
   }
@@ -398,10 +419,10 @@ std::vector<CalibrationUnknown> read_calibration_unknowns(const std::string& pat
     const toml::node* name = node.is_table() ? node.as_table()->get("name") : nullptr;
     const std::string label =
         name && name->is_string() ? name->as_string()->get() : std::to_string(i + 1);
-    const Where where(file + ", unknown " + label);
+    const Where where(file + ", unknown " + printable(label));
     CalibrationUnknown u = read_unknown(node, where);
     for (const auto& earlier : unknowns) {
-      if (earlier.name == u.name) where.fail("name '" + u.name + "' is used twice");
+      if (earlier.name == u.name) where.fail("name '" + printable(u.name) + "' is used twice");
     }
     unknowns.push_back(std::move(u));
   }
@@ -422,7 +443,7 @@ CalibrationStudy read_calibration_study(const std::string& path) {
   const Where where("study file '" + path + "'");
   for (const auto& [k, node] : doc) {
     if (!contains(kStudyKeys, std::string(k.str()))) {
-      where.fail("unknown key '" + std::string(k.str()) + "' (keys: " + joined(kStudyKeys) + ")");
+      where.fail("unknown key '" + printable(k.str()) + "' (keys: " + joined(kStudyKeys) + ")");
     }
   }
   const toml::node* unknowns = doc.get("unknowns");
@@ -443,7 +464,8 @@ CalibrationStudy read_calibration_study(const std::string& path) {
   for (std::size_t i = 0; i < study.unknowns.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       if (study.unknowns[i].key == study.unknowns[j].key) {
-        where.fail("two searched unknowns set the same key '" + study.unknowns[i].key + "'");
+        where.fail("two searched unknowns set the same key '" + printable(study.unknowns[i].key) +
+                   "'");
       }
     }
   }
@@ -493,7 +515,7 @@ CalibrationStudy read_calibration_study(const std::string& path) {
       const std::string& key = setting.first;
       const bool searched = std::any_of(study.unknowns.begin(), study.unknowns.end(),
                                         [&](const CalibrationUnknown& u) { return u.key == key; });
-      if (searched) where.fail("'fixed." + key + "' is also a searched unknown");
+      if (searched) where.fail("'fixed." + printable(key) + "' is also a searched unknown");
       study.fixed.push_back(setting);
     }
   }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "lochmatter2008/calibration.hpp"
+#include "lochmatter2008/calibration_study.hpp"
 #include "lochmatter2008/claims.hpp"
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/agent/controllers.hpp"
@@ -914,6 +915,61 @@ py::dict point_dict(const pt::PointStats& p) {
   return d;
 }
 
+// a calibration unknown as plumetrace.calibrate.study builds its Unknown from it
+py::dict unknown_dict(const pt::CalibrationUnknown& u) {
+  py::dict d;
+  d["name"] = u.name;
+  d["key"] = u.key;
+  d["title"] = u.title;
+  d["printed"] = u.printed ? py::cast(*u.printed) : py::none();
+  d["choices"] = u.choices.empty() ? py::none() : py::cast(u.choices);
+  d["low"] = u.choices.empty() ? py::cast(u.low) : py::none();
+  d["high"] = u.choices.empty() ? py::cast(u.high) : py::none();
+  d["log"] = u.log;
+  d["integer"] = u.integer;
+  d["changes"] = u.changes;
+  py::list evidence;
+  for (const pt::UnknownEvidence& e : u.evidence) {
+    evidence.append(py::make_tuple(e.value, e.source, e.says));
+  }
+  d["evidence"] = evidence;
+  return d;
+}
+
+// a calibration study file read and checked in C++ (lochmatter2008/calibration_study.hpp), as
+// the dict plumetrace.calibrate.study.load_study builds its Study from
+py::dict read_calibration_study(const py::handle& path) {
+  const pt::CalibrationStudy s = pt::read_calibration_study(text_of(path, "study file"));
+  const auto unknowns = [](const std::vector<pt::CalibrationUnknown>& list) {
+    py::list out;
+    for (const pt::CalibrationUnknown& u : list) out.append(unknown_dict(u));
+    return out;
+  };
+  const auto table = [](const std::vector<std::pair<std::string, pt::ConfigValue>>& pairs) {
+    py::dict out;
+    for (const auto& [key, value] : pairs) out[py::str(key)] = value;
+    return out;
+  };
+  py::dict d;
+  d["name"] = s.name;
+  d["unknowns_path"] = s.unknowns_file;
+  d["all_unknowns"] = unknowns(s.all_unknowns);
+  d["unknowns"] = unknowns(s.unknowns);
+  d["sets_dir"] = s.sets_dir;
+  d["sets"] = s.sets;
+  d["runs"] = s.runs;
+  d["seed"] = s.seed;
+  d["trials"] = s.trials;
+  d["threads"] = s.threads;
+  d["startup_trials"] = s.startup_trials;
+  d["target"] = s.target;
+  d["truth"] = table(s.truth);
+  d["fixed"] = table(s.fixed);
+  d["validation"] = py::dict(py::arg("top") = s.validation.top, py::arg("runs") = s.validation.runs,
+                             py::arg("seed") = s.validation.seed);
+  return d;
+}
+
 // the experiment sets of a folder under overrides, in memory, and their claims; Ctrl-C (any
 // Python signal handler that raises) stops it between runs and raises here
 py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, int runs,
@@ -1064,6 +1120,11 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("path"), py::arg("overrides"),
       "the detection map's cell centres x, y and height z (plumetrace probe --map)");
+  m.def("read_calibration_study", &read_calibration_study, py::arg("path"),
+        "a calibration study file and its unknowns file, read and checked (docs/calibration.md): "
+        "a dict of the study's keys, its unknowns (dicts) and resolved paths; ConfigError naming "
+        "the file and the key");
+  m.attr("MAX_CALIBRATION_TRIALS") = pt::kMaxCalibrationTrials;
   m.def("evaluate_sets", &evaluate_sets, py::arg("sets_dir"), py::arg("overrides"), py::arg("runs"),
         py::arg("seed"), py::arg("threads"), py::arg("sets") = std::vector<std::string>{},
         py::arg("claims") = std::vector<int>{},

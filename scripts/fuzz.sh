@@ -11,7 +11,7 @@
 #   scripts/fuzz.sh repro TARGET FILE...   run a target once on each input (a finding's repro)
 #   scripts/fuzz.sh check                  exits 0 when clang and libFuzzer are installed
 #
-# Targets: scenario, sweep, trace, store, study. Extra libFuzzer flags go in FUZZ_FLAGS (for a long
+# Targets: scenario, sweep, trace, store, study, calibration. Extra libFuzzer flags go in FUZZ_FLAGS (for a long
 # campaign, say FUZZ_FLAGS="-fork=2 -ignore_crashes=1"). The build folder is build-fuzz/ unless
 # PLUMETRACE_FUZZ_BUILD names another; the seeds in tests/fuzz/corpus/ are only read, what the
 # fuzzer finds goes to BUILD/corpus/TARGET and failing inputs to BUILD/artifacts/TARGET/.
@@ -19,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build="${PLUMETRACE_FUZZ_BUILD:-build-fuzz}"
-targets=(scenario sweep trace store study)
+targets=(scenario sweep trace store study calibration)
 clangxx="${FUZZ_CXX:-clang++}"
 clangc="${FUZZ_CC:-clang}"
 

@@ -287,7 +287,9 @@ def test_a_bad_study_file_is_refused_naming_the_key(tmp_path, capsys, body, unkn
 
 def test_the_command_exits_with_status_2_on_a_bad_study_file(tmp_path):
     study = study_file(tmp_path, "colour = 1\n")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    # the package these tests import, with its C++ module (another test file may have put the
+    # source tree, without it, first on sys.path)
+    env = dict(os.environ, PYTHONPATH=str(Path(pt.__file__).resolve().parents[1]))
     r = subprocess.run([sys.executable, "-m", "plumetrace.calibrate", str(study), "--quiet"],
                        capture_output=True, text=True, env=env, cwd=tmp_path)
     assert r.returncode == 2

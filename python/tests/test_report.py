@@ -363,6 +363,14 @@ def test_missing_summary_exits_nonzero_naming_the_file(tmp_path):
     assert "not found" in result.stderr
 
 
+def test_a_fifo_summary_is_refused_without_blocking(tmp_path):
+    # read as every input is (plumetrace._files.read_input); it blocked for ever in open()
+    os.mkfifo(tmp_path / "summary.json")
+    result = run_cli(tmp_path)
+    assert result.returncode != 0
+    assert f"'{tmp_path / 'summary.json'}': not a regular file" in result.stderr
+
+
 def test_malformed_sensitivity_names_that_file(tmp_path):
     write_json(tmp_path / "summary.json", make_summary())
     (tmp_path / "sensitivity.json").write_text('{"plumetrace_sensitivity": 1}', encoding="utf-8")

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes the seed corpora of the fuzz targets into tests/fuzz/corpus/TARGET/: copies of the
-# scenario and sweep files of the repository, a short run's traces and a tiny sweep's store made
+# scenario, sweep and calibration study files of the repository, a short run's traces and a tiny sweep's store made
 # by the plumetrace command, and slightly broken variants of each. Run it again after a change
 # of the file formats (it rewrites only the files it makes; regress-* inputs are kept).
 #
@@ -13,7 +13,7 @@ P="$(realpath "${1:-build/plumetrace}")"
 corpus=tests/fuzz/corpus
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-mkdir -p "$corpus"/{scenario,sweep,trace,store,study}
+mkdir -p "$corpus"/{scenario,sweep,trace,store,study,calibration}
 
 # the --set separator of the TOML targets (tests/fuzz/fuzz_support.hpp)
 with_sets() {
@@ -55,6 +55,30 @@ printf 'name = "u"\n[[axis]]\nkey = "wind.vz"\nvalues = [0.1, "x"]\n' >"$w/bad-v
 printf 'title = "no name"\nruns = 0\n[[axis]]\nkey = "sim.dt"\nvalues = [0.01]\n' >"$w/bad-name.toml"
 printf 'name = "s"\nscenario = "missing.toml"\n[[axis]]\nkey = "sim.dt"\nvalues = [0.01]\n' \
   >"$w/bad-scenario.toml"
+
+# calibration: the two calibration studies, a synthetic one with [truth] and [fixed], one with an
+# unknowns file of its own (after the line "#--unknowns", tests/fuzz/fuzz_calibration.cpp), and
+# mistakes: each key out of range or of the wrong type, names twice, an unknown without evidence
+c="$corpus/calibration"
+cp studies/lochmatter2008/calibration.toml "$c/calibration.toml"
+cp studies/lochmatter2008/calibration-evidenced.toml "$c/calibration-evidenced.toml"
+small='unknowns = "unknowns.toml"\nsets_dir = "sets"\nsets = ["A", "D"]\nsearch = ["amount", "success_radius"]\n'
+printf "$small"'runs = 4\nseed = 3\ntrials = 30\nstartup_trials = 5\nthreads = 2\ntarget = "synthetic"\n[truth]\namount = 1.0\nsuccess_radius = 0.3\n[fixed]\nsupervisor.timeout = 400.0\n[validation]\ntop = 2\nruns = 4\nseed = 9\n' \
+  >"$c/synthetic.toml"
+printf 'unknowns = "unknowns.toml"\nsets = ["G"]\nevidenced_only = true\n\n#--unknowns\n[[unknown]]\nname = "r"\nkey = "supervisor.success_radius"\nprinted = 0.185\nlow = 0.1\nhigh = 0.5\n[[unknown.evidence]]\nvalue = 0.185\nsource = "paper"\n[[unknown]]\nname = "n"\nkey = "casting.beta_deg"\nlow = 5\nhigh = 45\nint = true\nlog = true\n[[unknown.evidence]]\nvalue = 25\n' \
+  >"$c/own-unknowns.toml"
+printf "$small"'runs = 100000000\n' >"$c/bad-runs.toml"
+printf "$small"'runs = 200000\n' >"$c/bad-runs-points.toml"
+printf "$small"'threads = 5000\n' >"$c/bad-threads.toml"
+printf "$small"'trials = 0\n[validation]\nruns = 10000001\n' >"$c/bad-trials.toml"
+printf 'unknowns = "unknowns.toml"\nsearch = ["amount", "amount"]\nsets = ["A", "A"]\n' >"$c/bad-twice.toml"
+printf 'unknowns = "unknowns.toml"\nsearch = ["amount"]\nevidenced_only = "yes"\nseed = 4\n[validation]\nseed = 4\n' \
+  >"$c/bad-types.toml"
+printf 'unknowns = "unknowns.toml"\ntarget = "synthetic"\n[truth]\nwind = 1\n[fixed.plume]\namount = [1]\n' \
+  >"$c/bad-truth.toml"
+printf 'unknowns = "unknowns.toml"\nsets_dir = "nowhere"\nname = ""\n' >"$c/bad-sets-dir.toml"
+printf 'unknowns = "unknowns.toml"\n\n#--unknowns\n[[unknown]]\nname = "a"\nkey = "plume.amount"\nlow = 1.0\nhigh = nan\n[[unknown]]\nname = "a"\nkey = "plume.amount"\nchoices = []\n' \
+  >"$c/bad-unknowns.toml"
 
 # trace: a short run written as .json and .csv, and broken variants
 t="$corpus/trace"
@@ -120,4 +144,4 @@ printf 'name = "t\\u001b[31m"\nsets = ["two.toml"]\n' >"$st/bad-control.toml"
 printf 'name = "x"\nsets = ["two.toml"]\nextra = 1\n' >"$st/bad-key.toml"
 mkdir -p tests/fuzz/dict
 /usr/bin/python3 tests/fuzz/make_dict.py "$s/resolved.toml" tests/fuzz/dict/toml.dict
-echo "make_corpus: seeds in $corpus/{scenario,sweep,trace,store,study}; tests/fuzz/dict/toml.dict"
+echo "make_corpus: seeds in $corpus/{scenario,sweep,trace,store,study,calibration}; tests/fuzz/dict/toml.dict"

@@ -9,9 +9,17 @@ claims; writes DIR/study.sqlite (resumable), DIR/validation.json, DIR/best.toml 
 DIR/calibration.html. Formats and the score: docs/calibration.md.
 """
 
-from .study import CALIBRATION_CLAIMS, HELD_OUT_CLAIMS, StudyError, load_study
-
 __all__ = ["CALIBRATION_CLAIMS", "HELD_OUT_CLAIMS", "StudyError", "load_study", "main"]
+
+
+def __getattr__(name):
+    # why: lazy, so that `python3 -m plumetrace.calibrate` reaches its signal handlers (status
+    # 130 on Ctrl-C) after as few imports as possible
+    if name in __all__:
+        from . import study
+
+        return getattr(study, name)
+    raise AttributeError(f"module 'plumetrace.calibrate' has no attribute {name!r}")
 
 
 def main(argv=None):

@@ -7,6 +7,7 @@ import io
 import math
 import time
 
+from .._files import write_whole
 from .search import completed
 from .study import CALIBRATION_CLAIMS, HELD_OUT_CLAIMS, same_value
 
@@ -222,8 +223,5 @@ def write_report(study, opt, validation, out_dir, evaluated_now=0):
     """Writes OUT/calibration.html; returns its path."""
     from pathlib import Path
 
-    path = Path(out_dir) / "calibration.html"
-    tmp = path.with_suffix(".html.part")
-    tmp.write_text(render(study, opt, validation, evaluated_now))
-    tmp.replace(path)
-    return path
+    return write_whole(Path(out_dir) / "calibration.html",
+                       render(study, opt, validation, evaluated_now))

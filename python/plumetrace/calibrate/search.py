@@ -11,6 +11,7 @@ import time
 import warnings
 from pathlib import Path
 
+from .._files import BadPath, read_input, write_whole
 from .study import CALIBRATION_CLAIMS, HELD_OUT_CLAIMS, StudyError
 
 # the score of target "paper" (docs/calibration.md): per calibration claim, its margin clipped
@@ -188,8 +189,14 @@ def open_study(study, out_dir):
     RUNNING are marked failed. Refuses a folder whose study has another definition."""
     optuna = _optuna()
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
     storage = f"sqlite:///{(out_dir / 'study.sqlite').resolve()}"
+    # why: the folder's validation.json, best.toml and report are one study's; a second study
+    # in the same database would overwrite them
+    others = [s.study_name for s in optuna.get_all_study_summaries(storage)
+              if s.study_name != study.name]
+    if others:
+        raise StudyError(f"'{out_dir}' holds study '{others[0]}', not '{study.name}'; use "
+                         "another --out (one study per folder)")
     opt = optuna.create_study(study_name=study.name, storage=storage, direction="maximize",
                               load_if_exists=True)
     definition = study_definition(study)
@@ -222,7 +229,8 @@ def run_search(study, out_dir, progress=False):
     done = len(completed(opt))
     # why: seeded by the trials so far, so a resumed study samples afresh instead of repeating
     # the first session's random start-up candidates
-    opt.sampler = optuna.samplers.TPESampler(seed=study.seed + len(opt.trials),
+    # (NumPy takes seeds below 2^32: larger ones wrap)
+    opt.sampler = optuna.samplers.TPESampler(seed=(study.seed + len(opt.trials)) % 2**32,
                                              n_startup_trials=study.startup_trials)
     dists = distributions(study)
     target = Target(study)
@@ -304,11 +312,11 @@ def validate(study, opt, out_dir, progress=False):
             "definition": study_definition(study)}
     if out_path.exists():
         try:
-            old = json.loads(out_path.read_text())
-            if old.get("plan") == plan:
+            old = json.loads(read_input(out_path, "validation file"))
+            if isinstance(old, dict) and old.get("plan") == plan:
                 return old
-        except (OSError, ValueError):
-            pass
+        except (BadPath, ValueError):
+            pass  # validated again, and replaced
     target = Target(study)
     candidates = []
     for i, t in enumerate(chosen):
@@ -335,9 +343,7 @@ def validate(study, opt, out_dir, progress=False):
     doc = {"plan": plan, "study": str(study.path), "target": study.target,
            "validation": {"top": v.top, "runs": v.runs, "seed": v.seed},
            "candidates": candidates, "best": best}
-    tmp = out_path.with_suffix(".json.part")
-    tmp.write_text(json.dumps(doc, indent=1))
-    tmp.replace(out_path)
+    write_whole(out_path, json.dumps(doc, indent=1))
     return doc
 
 

@@ -58,12 +58,17 @@ def write_whole(path: Path, content: Union[bytes, str]) -> Path:
 
 
 def _load_json(path: Path) -> Any:
-    """Parses one JSON file, raising ReportError with the path on any problem."""
+    """Parses one JSON file, raising ReportError with the path on any problem. It is read as
+    every input is (plumetrace._files.read_input: a regular file, without blocking, bounded)."""
+    from .._files import BadPath, read_input
+
+    if not os.path.lexists(path):
+        raise ReportError(f"{path}: file not found")
     try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ReportError(f"{path}: file not found") from None
-    except (OSError, UnicodeDecodeError) as err:
+        text = read_input(path, "report input").decode("utf-8")
+    except BadPath as err:
+        raise ReportError(str(err)) from None
+    except UnicodeDecodeError as err:
         raise ReportError(f"{path}: cannot read: {err}") from None
     try:
         return json.loads(text)

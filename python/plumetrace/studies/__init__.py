@@ -36,17 +36,28 @@ def folder(name):
 def sets(name):
     """The sweep files of study `name` in its study.toml's order, by the name each file
     gives itself (``{"A": Path(".../sets/A.toml"), ...}``)."""
-    import tomllib
-
     base = folder(name)
-    with open(base / "study.toml", "rb") as f:
-        files = tomllib.load(f).get("sets", [])
+    files = _read_toml(base / "study.toml", "study file").get("sets", [])
     out = {}
     for rel in files:
         path = base / rel
-        with open(path, "rb") as f:
-            out[tomllib.load(f).get("name", path.stem)] = path
+        out[_read_toml(path, "sweep file").get("name", path.stem)] = path
     return out
+
+
+def _read_toml(path, what):
+    # read as every input is (plumetrace._files.read_input: a regular file, without blocking,
+    # bounded in size); a mistake raises ValueError naming the file
+    import tomllib
+
+    from .._files import read_input
+
+    try:
+        return tomllib.loads(read_input(path, what).decode("utf-8"))
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{what} '{path}': not UTF-8 text ({e.reason} at byte {e.start})") from None
+    except tomllib.TOMLDecodeError as e:
+        raise ValueError(f"{what} '{path}': invalid TOML: {e}") from None
 
 
 def _subpackage_path(package_path, name):

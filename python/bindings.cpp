@@ -1056,6 +1056,8 @@ PYBIND11_MODULE(_core, m) {
       py::register_exception<pt::StoreError>(m, "StoreError", PyExc_ValueError);
   py::register_exception<pt::StoreIoError>(m, "StoreIoError", store_error.ptr());
   m.attr("MAX_THREADS") = pt::kMaxThreads;
+  // the size bound of every input file (core/files.hpp), which plumetrace._files shares
+  m.attr("MAX_INPUT_BYTES") = pt::kMaxInputBytes;
 
   m.def(
       "resolve_json",

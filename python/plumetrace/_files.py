@@ -15,12 +15,17 @@ import stat
 import tempfile
 from pathlib import Path
 
-__all__ = ["BadPath", "FileIoError", "FolderBusy", "MAX_INPUT_BYTES", "folder_lock",
-           "output_folder", "read_input", "write_whole"]
+__all__ = ["BadPath", "FileIoError", "FolderBusy", "MAX_INPUT_BYTES", "MAX_RESULTS_BYTES",
+           "exit_status", "folder_lock", "output_folder", "read_input", "read_toml", "write_whole"]
 
-# The largest input file read (a study, sweep or unknowns file): 64 MiB. why: an input is read
+# The largest input file read (a study, sweep or unknowns file): 16 MiB, the C++ reader's
+# kMaxInputBytes (include/plumetrace/core/files.hpp; a test compares them). why: an input is read
 # whole, then parsed into a tree several times its size; no file of this project comes near
-MAX_INPUT_BYTES = 64 * 1024 * 1024
+MAX_INPUT_BYTES = 16 * 1024 * 1024
+# The largest results file a report reads (results.json, summary.json: 2 GiB, the C++
+# kMaxTraceBytes). why: results.json holds every run, some 300 bytes each, so a campaign at the
+# run limit (1e7) is gigabytes; the bound keeps only a wrong file out
+MAX_RESULTS_BYTES = 2 * 1024 * 1024 * 1024
 
 # what an OSError's errno means for the user, where the system's own words say less
 _CAUSES = {
@@ -88,12 +93,33 @@ def read_input(path, what, max_bytes=MAX_INPUT_BYTES):
             size += len(chunk)
             # why: counted while reading, so a file that grows after fstat is bounded too
             if size > max_bytes:
-                raise refuse(f"larger than {max_bytes} bytes, the most an input file may have")
+                raise refuse(f"larger than {max_bytes} bytes, the most an input file may have "
+                             f"(it has {os.fstat(fd).st_size})")
             chunks.append(chunk)
     except OSError as e:
         raise refuse(_cause(e)) from None
     finally:
         os.close(fd)
+
+
+def exit_status(error):
+    """The exit status of a command that stops on `error`, as the C++ command's (docs/
+    reliability.md, "Exit codes"): 3 when the system could not open, read or write (OSError,
+    FileIoError), 2 for bad input (BadPath, a malformed file)."""
+    return 3 if isinstance(error, OSError) else 2
+
+
+def read_toml(path, what):
+    """The TOML file `path` as a dict, read by read_input; raises BadPath naming `what` and the
+    file when it cannot be read, is not UTF-8 or is not TOML."""
+    import tomllib
+
+    try:
+        return tomllib.loads(read_input(path, what).decode("utf-8"))
+    except UnicodeDecodeError as e:
+        raise BadPath(f"{what} '{path}': not UTF-8 text ({e.reason} at byte {e.start})") from None
+    except tomllib.TOMLDecodeError as e:
+        raise BadPath(f"{what} '{path}': invalid TOML: {e}") from None
 
 
 def output_folder(path, option):
@@ -114,7 +140,8 @@ def output_folder(path, option):
     except OSError as e:
         raise FileIoError(f"{option}: cannot make the folder '{folder}': {_cause(e)}") from None
     if not folder.is_dir():
-        raise FileIoError(f"{option}: '{folder}' exists and is not a folder")
+        # bad input, as for the C++ command (make_output_folder): the path names a file
+        raise BadPath(f"{option}: '{folder}' is a file, not a folder")
     try:
         fd, probe = tempfile.mkstemp(prefix=".write-test.", dir=folder)
         os.close(fd)

@@ -84,10 +84,13 @@ def test_a_folder_or_non_utf8_study_file_is_refused_naming_it_with_status_2(tmp_
     assert not (tmp_path / "out").exists()
 
 
-def test_an_out_that_cannot_be_a_writable_folder_exits_3_naming_it(tmp_path):
+def test_an_out_that_cannot_be_a_writable_folder_exits_2_or_3_naming_it(tmp_path):
     study = small_study(tmp_path)
     (tmp_path / "a-file").write_text("keep me\n")
-    for out, says in [("a-file", "is not a folder"), ("a-file/below", "a-file/below"),
+    # a file named as the folder is bad input (2), as for the command (make_output_folder)
+    r = calibrate_command([study, "--out", "a-file", "--quiet"], tmp_path)
+    assert_one_line_error(r, 2, "--out", "'a-file' is a file, not a folder")
+    for out, says in [("a-file/below", "a-file/below"),
                       ("/proc/plumetrace-calibration", "/proc/plumetrace-calibration"),
                       ("/proc/self", "cannot write in '/proc/self'")]:
         r = calibrate_command([study, "--out", out, "--quiet"], tmp_path)

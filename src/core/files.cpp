@@ -61,6 +61,11 @@ void OutputFile::commit() {
 // a check and the open (issue 13, F8)
 bool read_regular_file(const std::string& path, std::string& text, std::string& why,
                        std::uint64_t max_bytes) {
+  // why: the operating system reads a path up to its first NUL, so another file would be read
+  if (path.find('\0') != std::string::npos) {
+    why = "the path holds a NUL character";
+    return false;
+  }
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     why = std::strerror(errno);
@@ -80,8 +85,8 @@ bool read_regular_file(const std::string& path, std::string& text, std::string& 
     return false;
   }
   const auto too_large = [&](std::uint64_t size) {
-    why = "larger than " + std::to_string(max_bytes) + " bytes (" + std::to_string(size) +
-          "): not an input file of plumetrace";
+    why = "larger than " + std::to_string(max_bytes) +
+          " bytes, the most an input file may have (it has " + std::to_string(size) + ")";
     return false;
   };
   if (static_cast<std::uint64_t>(st.st_size) > max_bytes) {

@@ -13,6 +13,9 @@ import sys
 from pathlib import Path
 from typing import Optional
 
+from plumetrace._files import (MAX_RESULTS_BYTES, BadPath, exit_status, output_folder,
+                               read_input)
+
 from plumetrace.report.figures import _new_figure, _save
 from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
 from plumetrace.report.wording import change, difference
@@ -174,11 +177,10 @@ def build_report(out_dir) -> list:
     out = Path(out_dir)
     path = out / "results.json"
     try:
-        results = json.loads(path.read_text())
+        results = json.loads(read_input(path, "results file", MAX_RESULTS_BYTES).decode("utf-8"))
     except (OSError, ValueError) as e:
         raise MeanderReportError(f"cannot read {path}: {e}") from e
-    fig_dir = out / "figures"
-    fig_dir.mkdir(parents=True, exist_ok=True)
+    fig_dir = output_folder(out / "figures", "the report's figures")
     sections, findings, d_verdicts = [], [], []
     algorithm_verdict = None
     for sweep in results.get("sweeps", []):
@@ -243,7 +245,7 @@ def main(argv: Optional[list] = None) -> int:
     try:
         for p in build_report(args[0]):
             print(f"wrote {p}")
-    except MeanderReportError as e:
+    except (MeanderReportError, BadPath, OSError) as e:
         print(f"plumetrace.studies.meander: error: {e}", file=sys.stderr)
-        return 2
+        return exit_status(e)
     return 0

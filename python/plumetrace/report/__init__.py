@@ -19,6 +19,7 @@ import types
 from pathlib import Path
 from typing import Union
 
+from .._files import output_folder
 from .data import Point, ReportError, fmt_overhead, load_inputs
 from .page import REPO_ROOT, render_html, render_markdown, write_pages
 from plumetrace.studies.lochmatter2008.report_sections import (document, failure_sentence,
@@ -36,8 +37,7 @@ def build_report(out_dir: Union[str, Path]) -> list:
     """
     out_dir = Path(out_dir)
     summary, sens = load_inputs(out_dir)
-    fig_dir = out_dir / "figures"
-    fig_dir.mkdir(parents=True, exist_ok=True)
+    fig_dir = output_folder(out_dir / "figures", "the report's figures")
     figures: list = []
     title, intro, sections = document(out_dir, fig_dir, summary, sens, figures)
     return write_pages(out_dir, title, intro, sections) + figures

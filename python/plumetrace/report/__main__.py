@@ -1,10 +1,12 @@
-"""python3 -m plumetrace.report OUT_DIR: exit status 0, or 2 with the malformed file named."""
+"""python3 -m plumetrace.report OUT_DIR: exit status 0, 2 with the malformed file named, or 3
+when a file cannot be read or written (a full disk)."""
 
 import argparse
 import sys
 import time
 from typing import Optional, Sequence
 
+from .._files import BadPath, exit_status
 from . import ReportError, build_report
 
 
@@ -18,9 +20,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     start = time.perf_counter()
     try:
         written = build_report(args.out_dir)
-    except ReportError as err:
+    except (ReportError, BadPath, OSError) as err:
         print(f"plumetrace.report: error: {err}", file=sys.stderr)
-        return 2
+        return exit_status(err)
     elapsed = time.perf_counter() - start
     print(f"wrote {written[0]} and {written[1]} with {len(written) - 2} figures "
           f"in {elapsed:.1f} s")

@@ -43,29 +43,25 @@ def load_inputs(out_dir: Path) -> tuple:
 
 
 def write_whole(path: Path, content: Union[bytes, str]) -> Path:
-    """Writes path whole: into PATH.part, then renamed over PATH, as the C++ OutputFile does."""
-    # why: a reader, or a process killed mid-write, never sees half a report or a figure
-    if isinstance(content, str):
-        content = content.encode("utf-8")
-    part = path.with_name(path.name + ".part")
-    try:
-        part.write_bytes(content)
-        os.replace(part, path)
-    except BaseException:
-        part.unlink(missing_ok=True)
-        raise
-    return path
+    """Writes path whole, as the C++ OutputFile does: into a temporary name of this writer's
+    own, then renamed over PATH (plumetrace._files.write_whole).
+
+    why: a reader, or a process killed mid-write, never sees half a report or a figure, and two
+    processes drawing one report at once both finish (issue 22, G19)."""
+    from .._files import write_whole as whole
+
+    return whole(path, content)
 
 
 def _load_json(path: Path) -> Any:
     """Parses one JSON file, raising ReportError with the path on any problem. It is read as
     every input is (plumetrace._files.read_input: a regular file, without blocking, bounded)."""
-    from .._files import BadPath, read_input
+    from .._files import MAX_RESULTS_BYTES, BadPath, read_input
 
     if not os.path.lexists(path):
         raise ReportError(f"{path}: file not found")
     try:
-        text = read_input(path, "report input").decode("utf-8")
+        text = read_input(path, "report input", MAX_RESULTS_BYTES).decode("utf-8")
     except BadPath as err:
         raise ReportError(str(err)) from None
     except UnicodeDecodeError as err:

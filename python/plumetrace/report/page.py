@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Optional, Sequence, Union
 
+from .._files import output_folder
 from .data import DASH, write_whole
 
 @dataclass
@@ -289,7 +290,7 @@ def bundle_docs(out_dir: Path, hrefs: Iterable[str]) -> list:
             continue
         done.add(name)
         target = out_dir / "docs" / name
-        target.parent.mkdir(parents=True, exist_ok=True)
+        output_folder(target.parent, "the report's docs")
         data = source.read_bytes()
         written.append(write_whole(target, data))
         if name.endswith(".md"):

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Optional, Sequence
 
+from .._files import BadPath, exit_status, output_folder
 from .data import (DASH, Point, ReportError, _Checker, _json_type, _load_json, fmt_count,
                    fmt_median, fmt_overhead, fmt_rate, fmt_value, write_whole)
 from .figures import sweep_figure
@@ -445,8 +446,7 @@ def build_sweep_report(out_dir, results: Optional[dict] = None,
     views = sweep_views(results)
     if not views:
         raise ReportError(f"{out / RESULTS_NAME}: no sweep in it")
-    fig_dir = out / "figures"
-    fig_dir.mkdir(parents=True, exist_ok=True)
+    fig_dir = output_folder(out / "figures", "the report's figures")
     complete = list(complete or [])
     written: list = []
     title = report_title(views)
@@ -556,8 +556,7 @@ def report_sweep(sweep, store=None, out=None, runs=0, overrides=None, base=None,
                             "sweep file or dict of axes with a store")
         if out is None:
             raise TypeError("out: give the folder to write the report into")
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
+        out = output_folder(out, "out")
         return build_sweep_report(out, results_from_rows(sweep), made_from=(
             "Drawn from the rows of plumetrace.sweep in Python (no results store): run the same "
             "script again to redraw it."))
@@ -616,9 +615,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         written = build_sweep_report(args.out_dir, regenerate=args.regenerate,
                                      complete=args.complete)
-    except ReportError as err:
+    except (ReportError, BadPath, OSError) as err:
         print(f"plumetrace.report.sweep: error: {err}", file=sys.stderr)
-        return 2
+        return exit_status(err)
     print(f"wrote {written[0]}, {written[1]} and {written[-1]} with {len(written) - 3} "
           "figure(s)")
     return 0

@@ -46,18 +46,11 @@ def sets(name):
 
 
 def _read_toml(path, what):
-    # read as every input is (plumetrace._files.read_input: a regular file, without blocking,
-    # bounded in size); a mistake raises ValueError naming the file
-    import tomllib
+    # read as every input is (plumetrace._files: a regular file, without blocking, bounded in
+    # size); a mistake raises ValueError (BadPath) naming the file
+    from .._files import read_toml
 
-    from .._files import read_input
-
-    try:
-        return tomllib.loads(read_input(path, what).decode("utf-8"))
-    except UnicodeDecodeError as e:
-        raise ValueError(f"{what} '{path}': not UTF-8 text ({e.reason} at byte {e.start})") from None
-    except tomllib.TOMLDecodeError as e:
-        raise ValueError(f"{what} '{path}': invalid TOML: {e}") from None
+    return read_toml(path, what)
 
 
 def _subpackage_path(package_path, name):

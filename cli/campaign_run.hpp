@@ -1,6 +1,8 @@
 #pragma once
 
 #include <string>
+
+#include "shell.hpp"
 #include <vector>
 
 #include "options.hpp"
@@ -34,7 +36,5 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
 int draw_report(const std::string& out, const std::string& module = "plumetrace.report",
                 const std::vector<std::string>& args = {}, bool is_file = false);
 
-/// `text` as one word of a POSIX shell, for commands a user may paste.
-std::string shell_word(const std::string& text);
 
 }  // namespace plumetrace::cli

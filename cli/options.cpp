@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "campaign_run.hpp"
+#include "shell.hpp"
 #include "lochmatter2008/study.hpp"
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"

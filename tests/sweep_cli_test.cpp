@@ -262,13 +262,14 @@ TEST(ReportCli, ABadStoreOrFolderExitsTwoOrThreeNamingTheFile) {
   const std::string text = testing::write_temp("text", ".sqlite", "not a database at all\n");
   expect({"report", sweep, "--store", text, "--out", out}, 2,
          {text, "not a plumetrace results store"});
-  // a store of another sweep, and the same sweep under another base scenario
+  // the same sweep under another base scenario: a --set other than the one the store recorded
+  // (without --set, the recorded one is used: CliTrust.ExportAndReportUseTheSetTheStoreRecorded)
   const std::string other = testing::temp_path("other", ".sqlite");
   ASSERT_EQ(run_args({"sweep", write_grid("[0.1, 0.5]"), "--store", other, "--out",
                       testing::temp_path("other_sweep", ""), "--set", "sim.dt=0.04"})
                 .code,
             0);
-  expect({"report", sweep, "--store", other, "--out", out}, 2,
+  expect({"report", sweep, "--store", other, "--out", out, "--set", "sim.dt=0.032"}, 2,
          {other, "another resolved scenario", "wind_sensor.sigma_a = 0.1"});
   // a store of other values of the sweep: nothing to report, and how to compute it
   const std::string elsewhere = testing::temp_path("elsewhere", ".sqlite");

@@ -52,7 +52,8 @@ std::unique_ptr<Store> open_sweep_store(const SweepPlan& plan, const SweepComman
   // the exports' folder first, so that one that cannot be made stops the sweep before it runs
   if (plan.shard.count <= 1) make_output_folder(plan.out, cmd.out.empty() ? "out/NAME" : "--out");
   const auto folder = std::filesystem::path(plan.store_path).parent_path();
-  if (!folder.empty()) make_output_folder(folder.string(), "the folder of --store");
+  // why: no probe: a read-only store's own check names the store (exit 3, F15)
+  if (!folder.empty()) make_output_folder(folder.string(), "the folder of --store", false);
   return std::make_unique<Store>(plan.store_path, plan.sweeps, version(), cmd.fresh);
 }
 

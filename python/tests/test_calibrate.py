@@ -51,19 +51,10 @@ def write(path, text):
     return path
 
 
-def study_file(tmp_path, body, unknowns=UNKNOWNS):
-    write(tmp_path / "unknowns.toml", unknowns)
-    return write(tmp_path / "study.toml", 'unknowns = "unknowns.toml"\n' + body)
-
-
-# --- recovery of a known truth ------------------------------------------------------------------
-
-
-def test_recovers_a_known_truth_within_tolerance(tmp_path):
-    # a reduced problem: surge-spiral at three spiral gaps, 4 runs each, a 400 s time limit; the
-    # target is what amount 1 and success radius 0.3 give at the search's own seed, so the truth
-    # reproduces it exactly (distance 0) and any other reading does not
-    write(tmp_path / "sets" / "D.toml", f"""
+def write_set_d(tmp_path):
+    """Set D reduced to three spiral gaps of 4 runs each, as FOLDER/sets/D.toml: a trial of a
+    study on it runs in seconds."""
+    return write(tmp_path / "sets" / "D.toml", f"""
 name = "D"
 title = "Surge-spiral: spiral gap (three values)"
 scenario = "{SCENARIO}"
@@ -76,6 +67,21 @@ key = "surge_spiral.d_gap"
 values = [0.111, 0.222, 0.333]
 fixed = 0.222
 """)
+
+
+def study_file(tmp_path, body, unknowns=UNKNOWNS):
+    write(tmp_path / "unknowns.toml", unknowns)
+    return write(tmp_path / "study.toml", 'unknowns = "unknowns.toml"\n' + body)
+
+
+# --- recovery of a known truth ------------------------------------------------------------------
+
+
+def test_recovers_a_known_truth_within_tolerance(tmp_path):
+    # a reduced problem: surge-spiral at three spiral gaps, 4 runs each, a 400 s time limit; the
+    # target is what amount 1 and success radius 0.3 give at the search's own seed, so the truth
+    # reproduces it exactly (distance 0) and any other reading does not
+    write_set_d(tmp_path)
     study = study_file(tmp_path, """
 sets_dir = "sets"
 sets = ["D"]

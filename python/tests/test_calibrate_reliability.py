@@ -22,10 +22,9 @@ pt = plumetrace_with_core()
 
 from plumetrace import _core, _files, calibrate  # noqa: E402
 from plumetrace.calibrate import search  # noqa: E402
-from test_calibrate import SETS, FakeEvaluation, paper_study, study_file, write  # noqa: E402
+from test_calibrate import (SETS, FakeEvaluation, paper_study, study_file, write,  # noqa: E402
+                            write_set_d)
 
-ROOT = Path(__file__).resolve().parents[2]
-SCENARIO = ROOT / "scenarios" / "lochmatter2008.toml"
 # the package these tests import, with its C++ module (another test file may put the source
 # tree, without it, first on sys.path)
 ENV = dict(os.environ, PYTHONPATH=str(Path(pt.__file__).resolve().parents[1]))
@@ -49,19 +48,7 @@ def assert_one_line_error(r, status, *says):
 def small_study(tmp_path, body="", validation=""):
     """A study of set D reduced to three spiral gaps, one unknown: a trial runs in seconds.
     `body` holds more top-level keys, `validation` keys of [validation]."""
-    write(tmp_path / "sets" / "D.toml", f"""
-name = "D"
-title = "Surge-spiral: spiral gap (three values)"
-scenario = "{SCENARIO}"
-runs = 4
-seed = 5
-[set]
-controller.algorithm = "surge-spiral"
-[[axis]]
-key = "surge_spiral.d_gap"
-values = [0.111, 0.222, 0.333]
-fixed = 0.222
-""")
+    write_set_d(tmp_path)
     write(tmp_path / "unknowns.toml",
           '[[unknown]]\nname = "radius"\nkey = "supervisor.success_radius"\nlow = 0.1\n'
           'high = 0.5\n')

@@ -343,3 +343,11 @@ def test_discrete_actions_other_than_an_index_in_range_are_refused(action, error
     assert type(caught.value) is error and says in str(caught.value)
     for good in (0, np.int64(3), np.uint8(1), np.array([2]), np.array(1)):
         env.step(good)
+
+
+def test_meander_keys_beyond_the_stability_bound_raise_naming_them():
+    # issue 22, G1: each key inside its range, together they made the wind, and so the
+    # observations, NaN; the environment refuses them as the command does
+    with pytest.raises(pt.ConfigError, match="wind.meander_gain.*unstable"):
+        PlumeEnv(wind__model="meander", wind__meander_gain=10, wind__meander_bandwidth=100,
+                 wind__meander_damping=10)

@@ -127,7 +127,7 @@ std::string default_output_folder(const std::string& name, const std::string& fi
   return "out/" + name;
 }
 
-void make_output_folder(const std::string& path, const std::string& what) {
+void make_output_folder(const std::string& path, const std::string& what, bool probe) {
   namespace fs = std::filesystem;
   if (path.empty()) throw ConfigError(what + ": must not be empty");
   std::error_code ec;
@@ -137,15 +137,16 @@ void make_output_folder(const std::string& path, const std::string& what) {
   }
   fs::create_directories(path, ec);
   if (ec) throw IoError("cannot create the folder '" + path + "' (" + what + "): " + ec.message());
+  if (!probe) return;
   // a file created and removed again: rights, a read-only disk or /proc refuse it here
-  const std::string probe = part_name(path + "/.plumetrace-probe");
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  const std::string test_file = part_name(path + "/.plumetrace-probe");
+  const int fd = ::open(test_file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) {
     throw IoError("cannot write in the folder '" + path + "' (" + what +
                   "): " + std::strerror(errno));
   }
   ::close(fd);
-  ::unlink(probe.c_str());
+  ::unlink(test_file.c_str());
 }
 
 std::size_t control_character(std::string_view text) {

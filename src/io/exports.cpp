@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,20 +15,6 @@
 namespace plumetrace {
 
 namespace {
-
-// printf into a string, of any length
-std::string line(const char* format, ...) {
-  va_list args, again;
-  va_start(args, format);
-  va_copy(again, args);
-  const int n = std::vsnprintf(nullptr, 0, format, args);
-  std::string out(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::vsnprintf(out.data(), out.size(), format, again);
-  va_end(again);
-  va_end(args);
-  out.pop_back();
-  return out;
-}
 
 std::string interval_text(double value, double lo, double hi, int digits) {
   if (!std::isfinite(value)) return "n/a";

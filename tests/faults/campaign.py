@@ -8,7 +8,7 @@ names the cause. Random points are drawn from a seeded generator (PLUMETRACE_FAU
 
     campaign.py CASE...    CASE: kill_sweep kill_merge kill_mpi concurrent full_disk damage
                            readonly merge_onto_foreign study_escape study_foreign_report
-                           concurrent_out (or all)
+                           concurrent_out calibrate_inputs (or all)
 
 Environment: PLUMETRACE_CLI (the command), PLUMETRACE_MPIEXEC (mpirun; empty: no MPI build).
 Exit 0 when every check holds, 1 otherwise, 77 when a case cannot run here (it says why).
@@ -475,9 +475,62 @@ class Campaign:
             self.check(text == clean, "concurrent_out: the shared --out's exports differ")
             left = [f for f in os.listdir(out) if f.endswith(".part")]
             self.check(not left, "concurrent_out: left behind: %s" % left)
+    def calibrate_inputs(self):
+        """G5-G7, G9, G12: the calibration module on hostile inputs ends in one line with status
+        2 or 3 and no traceback, without blocking; a busy folder is refused at once."""
+        python_dir = os.path.join(os.path.dirname(CLI), "python")
+        if not os.path.isdir(os.path.join(python_dir, "plumetrace")):
+            raise Skip("no Python module beside the command (a build without PLUMETRACE_BUILD_PYTHON)")
+        env = dict(os.environ, PYTHONPATH=python_dir)
+        calib = os.path.join(SOURCE, "studies", "lochmatter2008", "calibration.toml")
+        work = self.path("calibrate")
+        os.makedirs(work)
+
+        def file(name, data):
+            path = os.path.join(work, name)
+            with open(path, "wb") as f:
+                f.write(data)
+            return path
+
+        fifo = os.path.join(work, "fifo.toml")
+        os.mkfifo(fifo)
+        deep = file("deep.toml", (".".join(["k"] * 50000) + " = 1\n").encode())
+        latin = file("latin.toml", "name = 'caf\xe9'\n".encode("latin-1"))
+        huge = file("huge.toml", b"# " + b"x" * (17 << 20) + b"\n")
+        folder = os.path.dirname(calib)
+        with open(calib, "rb") as f:
+            text = f.read()
+        # the shipped study with its folders made absolute and a run count past the limit
+        text = text.replace(b'"unknowns.toml"', ('"%s/unknowns.toml"' % folder).encode())
+        text = text.replace(b'sets_dir = "sets"', ('sets_dir = "%s/sets"' % folder).encode())
+        runs = file("runs.toml", text.replace(b"\nruns = 10\n", b"\nruns = 100000000\n"))
+        a_file = file("a-file", b"keep\n")
+        busy = os.path.join(work, "busy")
+        os.makedirs(busy)
+        cases = [([fifo], 2, "not a regular file"), ([work], 2, "a folder, not a file"),
+                 ([deep], 2, "dotted parts"), ([latin], 2, "latin.toml"),
+                 ([huge], 2, "larger than"), ([runs], 2, "runs"),
+                 ([calib, "--out", ""], 2, "--out"), ([calib, "--out", a_file], 2, "a-file"),
+                 ([calib, "--out", "/proc/plumetrace-calibration"], 3, "/proc"),
+                 ([calib, "--out", busy], 3, "busy")]
+        import fcntl
+        with open(os.path.join(busy, ".lock"), "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            for args, want, names in cases:
+                out = [] if "--out" in args else ["--out", os.path.join(work, "out")]
+                p = subprocess.run(["/usr/bin/python3", "-m", "plumetrace.calibrate"] + args + out
+                                   + ["--quiet"], capture_output=True, text=True, env=env,
+                                   cwd=work, timeout=LIMIT_S)
+                lines = p.stderr.strip().splitlines()
+                self.check(p.returncode == want and len(lines) == 1 and "Traceback" not in p.stderr
+                           and (names in p.stderr or names == "busy"),
+                           "calibrate_inputs: %s: exit %d (want %d): %s" % (
+                               args, p.returncode, want, p.stderr[-300:]))
+        self.check(open(a_file, "rb").read() == b"keep\n", "calibrate_inputs: --out a file changed it")
 
 CASES = ["kill_sweep", "kill_merge", "kill_mpi", "concurrent", "full_disk", "damage", "readonly",
-         "merge_onto_foreign", "study_escape", "study_foreign_report", "concurrent_out"]
+         "merge_onto_foreign", "study_escape", "study_foreign_report", "concurrent_out",
+         "calibrate_inputs"]
 
 
 def main(argv):

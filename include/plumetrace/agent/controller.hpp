@@ -29,8 +29,8 @@ class Controller {
 /// (issue 22, G8).
 inline constexpr std::size_t kMaxStateName = 64;
 
-/// Throws ConfigError saying why when `name` is not a state name: empty, longer than
-/// kMaxStateName, or holding a control character.
+/// Throws ConfigError saying why when `name` is not a state name: longer than kMaxStateName, or
+/// holding a control character.
 void check_state_name(std::string_view name);
 
 /// Tracks the path length since the last odor detection; the robot starts in the plume.

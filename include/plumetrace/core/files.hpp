@@ -72,11 +72,12 @@ bool is_folder_name(std::string_view name);
 std::string default_output_folder(const std::string& name, const std::string& file,
                                   const std::string& key = "name");
 
-/// Makes the output folder `path` (and its parents) and checks that a file can be created in
-/// it; `what` names where the path came from in messages ("--out"). Throws ConfigError when the
-/// path is empty or a file is in the way, IoError when the system refuses (rights, a read-only
-/// or full disk, /proc).
-void make_output_folder(const std::string& path, const std::string& what);
+/// Makes the output folder `path` (and its parents) and, with `probe`, checks that a file can be
+/// created in it; `what` names where the path came from in messages ("--out"). Throws
+/// ConfigError when the path is empty or a file is in the way, IoError when the system refuses
+/// (rights, a read-only or full disk, /proc). Without `probe` (the folder of a results store,
+/// whose own checks name the store) only the folder is made.
+void make_output_folder(const std::string& path, const std::string& what, bool probe = true);
 
 /// The index of the first control character of `text` (U+0000-U+001F, U+007F, U+0080-U+009F in
 /// UTF-8), or npos. why: a name or title is printed on terminals and written into CSV and HTML;

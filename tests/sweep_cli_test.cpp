@@ -340,6 +340,14 @@ TEST(Reproduce, TinyReproductionWritesEveryFigureAndTheClaimsTable) {
     EXPECT_EQ(r["held"].get<int>() + r["not_held"].get<int>() + r["unclear"].get<int>(), 11);
   }
   EXPECT_NE(html.find("plugin-published"), std::string::npos);
+  // the axis readings: the set files' own and each file of studies/lochmatter2008/axes/, each
+  // with its eleven verdicts, side by side in the report with the captions' evidence
+  ASSERT_EQ(summary["axis_readings"].size(), 2u);
+  EXPECT_EQ(summary["axis_readings"][0]["name"], "sets");
+  EXPECT_EQ(summary["axis_readings"][1]["sets"].size(), 3u);
+  for (const auto& a : summary["axis_readings"]) EXPECT_EQ(a["claims"].size(), 11u);
+  EXPECT_NE(md.find("## The axes side by side"), std::string::npos);
+  EXPECT_NE(md.find("bars lacking: fewer than 2 successful runs"), std::string::npos);
 }
 
 TEST(Reproduce, AnUnknownPresetExitsTwoNamingItBeforeAnyRun) {

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <set>
 
+#include "lochmatter2008/axes.hpp"
+#include "lochmatter2008/reproduce.hpp"
 #include "lochmatter2008/study.hpp"
 #include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
@@ -222,6 +224,76 @@ TEST(Presets, OtherReadingsSetsArePrefixedAndTheMainOnesKeepTheirNames) {
   const auto defaults = reading_sets(nine_sets(), none, true);
   EXPECT_EQ(defaults[0].points[0].config_hash,
             expand_sweep(nine_sets()[0], {}).points[0].config_hash);
+}
+
+// issue 23, item 3: the axes as readings
+TEST(AxisReadings, AReadingReplacesOnlyTheAxesOfTheSetsItNames) {
+  const auto sets = nine_sets();
+  const AxisReading sigma = read_axis_reading(kStudy + "/axes", "sigma-a-0.4", sets);
+  const auto moved = axis_reading_sets(sets, sigma);
+  ASSERT_EQ(moved.size(), 3u);
+  for (const auto& def : moved) {
+    EXPECT_EQ(def.name.rfind("@sigma-a-0.4/", 0), 0u) << def.name;
+    ASSERT_EQ(def.axes.size(), 1u);
+    EXPECT_EQ(def.axes[0].key, "wind_sensor.sigma_a");
+    EXPECT_EQ(def.axes[0].values.size(), 9u);
+    EXPECT_EQ(std::get<double>(def.axes[0].values.back()), 0.4);
+    EXPECT_EQ(std::get<double>(*def.axes[0].fixed), 0.1);
+  }
+  // the same set under its file's axis and under the reading share the fixed value's runs: the
+  // same scenario, and so the same config hash
+  const ExpandedSweep c = expand_sweep(sets[2], {});
+  const ExpandedSweep c04 = expand_sweep(moved[0], {});
+  EXPECT_EQ(c.points[1].config_hash, c04.points[2].config_hash);  // sigma_a = 0.1 in both
+  // the set files' own axes are the reading "sets", which changes nothing
+  EXPECT_TRUE(axis_reading_sets(sets, read_axis_reading(kStudy + "/axes", kSetsAxes, sets))
+                  .empty());
+  EXPECT_EQ(axis_reading_names(kStudy + "/axes"), std::vector<std::string>{"sigma-a-0.4"});
+}
+
+TEST(AxisReadings, BadAxisReadingsAreRefusedNamingTheFileAndTheKey) {
+  const auto sets = nine_sets();
+  const auto refused = [&](const std::string& text, const std::string& names) {
+    const std::string folder = presets_folder("bad", text);
+    try {
+      read_axis_reading(folder, "bad", sets);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(names), std::string::npos) << e.what();
+    }
+  };
+  refused("title = \"t\"\n[Z]\nvalues = [0.1, 0.2]\n", "unknown key 'Z'");
+  refused("title = \"t\"\n[C]\nvalues = [0.2, 0.1]\n", "[C] values: must be increasing");
+  refused("title = \"t\"\n[C]\nvalues = [0.1, 0.2]\nfixed = 0.3\n", "[C] fixed");
+  refused("title = \"t\"\n[C]\nvalues = [\"a\", \"b\"]\n", "[C] values: must be numbers");
+  refused("[C]\nvalues = [0.1, 0.2]\n", "title: missing");
+  try {
+    read_axis_reading(kStudy + "/axes", "nonesuch", sets);
+    ADD_FAILURE() << "an unknown axis reading was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--axes: unknown axis reading 'nonesuch'"),
+              std::string::npos);
+  }
+}
+
+TEST(AxisReadings, AReproductionRunsTheChangedSetsUnderTheMainReading) {
+  const Study study = read_study(default_study_file());
+  const Reproduction plan = plan_reproduction(study, "plugin", std::vector<std::string>{});
+  ASSERT_EQ(plan.axis_readings.size(), 2u);
+  EXPECT_EQ(plan.axis_readings[0].name, kSetsAxes);
+  std::vector<std::string> axis_sweeps;
+  for (const auto& s : plan.sweeps) {
+    if (s.def.name.rfind("@", 0) != 0) continue;
+    axis_sweeps.push_back(s.def.name);
+    // under the main reading, plugin: its amount
+    EXPECT_EQ(s.points[0].scenario.plume.amount, 8.3e9) << s.def.name;
+  }
+  EXPECT_EQ(axis_sweeps, (std::vector<std::string>{"@sigma-a-0.4/C", "@sigma-a-0.4/F",
+                                                   "@sigma-a-0.4/I"}));
+  const Reproduction none =
+      plan_reproduction(study, "default", std::vector<std::string>{}, std::vector<std::string>{});
+  EXPECT_EQ(none.axis_readings.size(), 1u);
+  EXPECT_EQ(none.sweeps.size(), plan.sweeps.size() - 3);
 }
 
 TEST(Presets, PlumePresetResetsTheScenarioFilesPlumeRowsAndExplicitRowsWin) {

@@ -143,6 +143,7 @@ struct MergeCommand final : Command {
 struct ReproduceCommand final : Command {
   std::string preset = "default";
   std::string presets;
+  std::string axes;
   int runs = 0;
   CampaignFlags flags;
   /// The command line, recorded in summary.json.

@@ -1,9 +1,12 @@
 #include "lochmatter2008/reproduce.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <optional>
 #include <thread>
+#include <vector>
 
 #include "campaign_run.hpp"
 #include "commands.hpp"
@@ -13,6 +16,26 @@
 #include "validators.hpp"
 
 namespace plumetrace::cli {
+
+namespace {
+
+// a comma-separated list of names given to `option`: none when not given (every one), an empty
+// list for "none"; an empty name is refused (G13: "a,,b" is a typo, not fewer names)
+std::optional<std::vector<std::string>> name_list(const std::string& text,
+                                                  const std::string& option) {
+  if (text.empty()) return std::nullopt;
+  std::vector<std::string> names;
+  for (std::size_t start = 0; text != "none" && start <= text.size();) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, comma - start);
+    if (name.empty()) throw ConfigError(option + ": empty name (in '" + text + "')");
+    names.push_back(name);
+    start = comma + 1;
+  }
+  return names;
+}
+
+}  // namespace
 
 CLI::App* ReproduceCommand::add(CLI::App& app) {
   auto* sub = app.add_subcommand(
@@ -34,6 +57,11 @@ CLI::App* ReproduceCommand::add(CLI::App& app) {
                   "the other readings whose nine sets are run too, for the claims columns, "
                   "comma-separated, or none (default: every preset file)")
       ->check(not_empty());
+  sub->add_option("--axes", axes,
+                  "the axis readings whose sets are run too under the main reading, for the "
+                  "axes' claims columns, comma-separated, or none (default: every file "
+                  "studies/lochmatter2008/axes/NAME.toml; docs/fidelity.md, \"The axes\")")
+      ->check(not_empty());
   sub->add_option("--runs", runs, "runs per value (default 50, as the paper)")
       ->check(whole_number(1, kMaxCampaignRuns));
   flags.add_to(*sub);
@@ -42,20 +70,9 @@ CLI::App* ReproduceCommand::add(CLI::App& app) {
 
 int ReproduceCommand::run() {
   const Study study = read_study(flags.study_file());
-  // --presets: none, NAME,NAME,..., or every preset file when not given
-  std::optional<std::vector<std::string>> others;
-  if (!presets.empty()) {
-    others.emplace();
-    // why: "a,,b" or a trailing comma is a typo, not a request for fewer readings (G13)
-    for (std::size_t start = 0; presets != "none" && start <= presets.size();) {
-      const std::size_t comma = std::min(presets.find(',', start), presets.size());
-      const std::string name = presets.substr(start, comma - start);
-      if (name.empty()) throw ConfigError("--presets: empty name (in '" + presets + "')");
-      others->push_back(name);
-      start = comma + 1;
-    }
-  }
-  const Reproduction plan = plan_reproduction(study, preset, others);
+  // --presets and --axes: none, NAME,NAME,..., or every file when not given
+  const Reproduction plan = plan_reproduction(study, preset, name_list(presets, "--presets"),
+                                              name_list(axes, "--axes"));
   check_campaign(plan.sweeps, runs);
   make_output_folder(flags.out, "--out");
   Store store(flags.out + "/results.sqlite", plan.sweeps, version(), flags.fresh);

@@ -23,7 +23,8 @@ Reading without_axes(Reading reading, const SweepDef& def) {
 }  // namespace
 
 Reproduction plan_reproduction(const Study& study, const std::string& main,
-                               const std::optional<std::vector<std::string>>& others) {
+                               const std::optional<std::vector<std::string>>& others,
+                               const std::optional<std::vector<std::string>>& axes) {
   Reproduction plan;
   plan.readings.push_back(read_reading(study.presets_dir, main));
   for (const auto& name : others ? *others : preset_names(study.presets_dir)) {
@@ -41,6 +42,18 @@ Reproduction plan_reproduction(const Study& study, const std::string& main,
       plan.sweeps.push_back(std::move(s));
     }
   }
+  // the axis readings: the sets on the set files' axes are the main sets; the others run the
+  // sets they change, under the main reading
+  plan.axis_readings.push_back(read_axis_reading(study.axes_dir, kSetsAxes, plan.sets));
+  for (const auto& name : axes ? *axes : axis_reading_names(study.axes_dir)) {
+    const bool seen = std::any_of(plan.axis_readings.begin(), plan.axis_readings.end(),
+                                  [&](const AxisReading& r) { return r.name == name; });
+    if (seen) continue;
+    plan.axis_readings.push_back(read_axis_reading(study.axes_dir, name, plan.sets));
+    for (const SweepDef& def : axis_reading_sets(plan.sets, plan.axis_readings.back())) {
+      plan.sweeps.push_back(expand_sweep(def, plan.readings.front().settings));
+    }
+  }
   return plan;
 }
 
@@ -51,6 +64,7 @@ void write_reproduction(const std::string& out, const Study& study, const Reprod
   info.radius = plan.radius;
   info.preset = plan.readings.front().name;
   info.readings = plan.readings;
+  info.axis_readings = plan.axis_readings;
   info.base_config = scenario_to_toml(
       load_scenario(plan.sweeps.front().def.scenario_path, plan.readings.front().settings));
   write_exports(out, plan.sweeps, rows, info.runs_override);

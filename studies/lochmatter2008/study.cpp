@@ -110,6 +110,8 @@ Study read_study(const std::string& path) {
       study.name = read.text(node, key);
     } else if (key == "presets") {
       study.presets_dir = read.file(node, key);
+    } else if (key == "axes") {
+      study.axes_dir = read.file(node, key);
     } else if (key == "sets") {
       for (const auto& f : read.texts(node, key)) study.set_files.push_back(read.resolve(f));
     } else if (key == "trajectory_sets") {
@@ -120,7 +122,7 @@ Study read_study(const std::string& path) {
       study.sensitivity_axes = read.sensitivity(node);
     } else {
       read.fail("unknown key '" + key +
-                "' (keys: name, presets, sets, trajectory_sets, radius, [sensitivity])");
+                "' (keys: name, presets, axes, sets, trajectory_sets, radius, [sensitivity])");
     }
   }
   for (const char* required : {"name", "presets", "sets", "radius"}) {

@@ -17,6 +17,8 @@ struct Study {
   std::string name;
   /// The folder of the readings' preset files NAME.toml.
   std::string presets_dir;
+  /// The folder of the axis readings' files NAME.toml (lochmatter2008/axes.hpp); may be empty.
+  std::string axes_dir;
   /// The experiment sets' sweep files, in the report's order.
   std::vector<std::string> set_files;
   /// The sets (by name) whose fixed-value points give the trajectory figure, the failed runs

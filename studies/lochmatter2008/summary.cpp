@@ -368,6 +368,52 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
   return doc;
 }
 
+// one axis reading under the main reading: the sets it changes, with their points, and the
+// claims of the main sets with those sets replaced (docs/fidelity.md, "The axes")
+json axis_reading_json(const AxisReading& axes, const std::vector<ExpandedSweep>& sweeps,
+                       const std::vector<RunRow>& rows, const ReproduceInfo& info) {
+  std::map<std::string, SetStats> by_name;
+  json changed = json::array();
+  for (const std::string& set : info.sets) {
+    const bool moved = axes.axes.count(set) > 0;
+    const ExpandedSweep* sweep = find(sweeps, moved ? axis_sweep_name(axes.name, set) : set);
+    if (!sweep) continue;
+    SetStats st = set_stats(*sweep, rows, runs_per_point(*sweep, info.runs_override));
+    st.name = set;
+    if (moved) {
+      json points = json::array();
+      for (std::size_t i = 0; i < st.points.size(); ++i) {
+        json p = point_json(st.points[i], sweep->points[i]);
+        p["value"] = st.values[i];
+        points.push_back(p);
+      }
+      changed.push_back({{"set", set},
+                         {"key", st.key},
+                         {"fixed_index", st.fixed_index},
+                         {"points", points}});
+    }
+    by_name[set] = std::move(st);
+  }
+  json claims = json::array();
+  int held = 0, not_held = 0, unclear = 0;
+  for (const auto& c : evaluate_claims(by_name)) {
+    claims.push_back(claim_json(c));
+    held += c.verdict == Verdict::kHolds;
+    not_held += c.verdict == Verdict::kDoesNotHold;
+    unclear += c.verdict == Verdict::kUnclear;
+  }
+  return {{"name", axes.name},
+          {"title", axes.title},
+          {"file", axes.file.empty()
+                       ? json(nullptr)
+                       : json(std::filesystem::path(axes.file).filename().string())},
+          {"sets", changed},
+          {"held", held},
+          {"not_held", not_held},
+          {"unclear", unclear},
+          {"claims", claims}};
+}
+
 }  // namespace
 
 SetStats set_stats(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int runs,
@@ -495,6 +541,11 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
         reading_json(info.readings[i], i == 0, sweeps, rows, info, compared_keys, maps));
   }
   doc["readings"] = readings;
+  json axis_readings = json::array();
+  for (const auto& a : info.axis_readings) {
+    axis_readings.push_back(axis_reading_json(a, sweeps, rows, info));
+  }
+  doc["axis_readings"] = axis_readings;
   if (const ExpandedSweep* a = first_set(sweeps, info, "", true)) {
     const Scenario& s = a->points.at(0).scenario;
     if (!readings.empty() && readings[0].contains("detection_map")) {

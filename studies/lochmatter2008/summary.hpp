@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "lochmatter2008/axes.hpp"
 #include "lochmatter2008/claims.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
@@ -44,6 +45,7 @@ struct ReproduceInfo {
   std::string command;                       ///< the command line
   std::string preset;                        ///< the main reading's name
   std::vector<Reading> readings;             ///< every reading run, the main one first
+  std::vector<AxisReading> axis_readings;    ///< the axis readings run, kSetsAxes first
   int runs_override = 0;                     ///< --runs (0: the sweep files')
   int threads = 0;                           ///< worker threads used
   double elapsed = 0.0;                      ///< seconds spent running (this call)

@@ -559,3 +559,29 @@ def test_the_regenerate_lines_are_the_commands_the_readme_gives(built):
     assert any(page.report_command("out") in b.splitlines() for b in blocks)
     # a folder name with a space stays one word
     assert page.report_command("my out") == "python3 -m plumetrace.report 'my out'"
+
+
+def test_what_would_change_names_the_deciding_part_and_where_the_claim_holds():
+    # issue 23, item 7: one sentence per claim that does not hold under the main reading
+    def claim(cid, verdict, evidence):
+        return {"id": cid, "verdict": verdict, "evidence": evidence}
+
+    summary = {
+        "readings": [
+            {"name": "default", "main": True, "values": {"plume.amount": 1.0, "wind.vx": 0.9},
+             "claims": [claim(1, "holds", "x -> yes"),
+                        claim(5, "does not hold", "change +0.8% [-0.4%, +2.0%] -> no"),
+                        claim(7, "unclear", "raises -> yes; drop 0.07 [0.04, 0.11] -> unclear")]},
+            {"name": "other", "values": {"plume.amount": 8.3e9, "wind.vx": 0.9},
+             "claims": [claim(5, "holds", "-> yes"), claim(7, "unclear", "-> unclear")]}],
+        "axis_readings": [
+            {"name": "sets", "claims": [claim(7, "unclear", "")]},
+            {"name": "narrow", "title": "a narrower axis", "claims": [claim(7, "holds", "")]}]}
+    changes = dict(report_sections.what_would_change(summary))
+    assert set(changes) == {5, 7}  # claim 1 holds: nothing to say
+    assert changes[5].startswith("it does not hold on change +0.8% [-0.4%, +2.0%] -> no.")
+    assert "the other reading (plume.amount differ)" in changes[5]
+    assert "narrow" not in changes[5]
+    assert changes[7].startswith("it is unclear on drop 0.07 [0.04, 0.11] -> unclear.")
+    assert "raises" not in changes[7]  # a supported part decides nothing
+    assert changes[7].endswith("It holds under the narrow axes (a narrower axis).")

@@ -180,7 +180,58 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
                             ("a", "the claims", "#claims"), "."]))
         blocks.append(Table(header=["id", "the paper says"] + [r.get("name") for r in readings]
                             + [f"what the data say ({main.get('name')})"], rows=claim_rows))
+    changes = what_would_change(summary)
+    if changes:
+        blocks.append(Para([("b", "What would change each verdict that is not \u201cholds\u201d"),
+                            f" under the {main.get('name')} reading, from the data: the part "
+                            "that decides it, and the readings (model values) and axis readings "
+                            "under which the claim holds instead. Rules and thresholds: ",
+                            _doc_link(out_dir, "docs/claims.md"), "."]))
+        blocks.append(Bullets([[f"Claim {cid}: {text}"] for cid, text in changes]))
     return Section("verdict", "What was found", blocks)
+
+
+def _deciding_parts(claim: dict) -> list:
+    """The parts of a claim's evidence that keep it from holding (those not ending in "-> yes")."""
+    parts = [p.strip() for p in (claim.get("evidence") or "").split("; ") if p.strip()]
+    return [p for p in parts if p.endswith("-> no") or p.endswith("-> unclear")]
+
+
+def what_would_change(summary: dict) -> list:
+    """(claim id, one sentence) for each claim that does not hold under the main reading: the
+    parts that decide it, and the readings and axis readings under which it holds. Computed from
+    summary.json alone (docs/report.md)."""
+    readings = _readings(summary)
+    if not readings:
+        return []
+    main = readings[0]
+    main_values = main.get("values") or {}
+    axes = [a for a in summary.get("axis_readings") or [] if a.get("name") != "sets"]
+    out = []
+    for claim in main.get("claims") or []:
+        cid = _int(claim.get("id"))
+        if cid is None or claim.get("verdict") == "holds":
+            continue
+        parts = _deciding_parts(claim)
+        text = ("it " + ("does not hold" if claim.get("verdict") == "does not hold"
+                         else "is unclear")
+                + (" on " + "; ".join(parts) if parts else ""))
+        holds_under = []
+        for r in readings[1:]:
+            if any(_int(c.get("id")) == cid and c.get("verdict") == "holds"
+                   for c in r.get("claims") or []):
+                differ = [k for k, v in (r.get("values") or {}).items()
+                          if main_values.get(k) != v]
+                holds_under.append(f"the {r.get('name')} reading"
+                                   + (f" ({', '.join(differ)} differ)" if differ else ""))
+        for a in axes:
+            if any(_int(c.get("id")) == cid and c.get("verdict") == "holds"
+                   for c in a.get("claims") or []):
+                holds_under.append(f"the {a.get('name')} axes ({a.get('title')})")
+        text += (". It holds under " + " and under ".join(holds_under) if holds_under
+                 else ". It holds under no other reading or axis reading run here")
+        out.append((cid, text + "."))
+    return out
 
 
 def short_figure(claim: dict) -> str:

@@ -32,6 +32,10 @@ double in_widths(double distance, double width) {
 
 double width(const Interval& i) { return i.hi - i.lo; }
 
+std::string_view directional_rule_name(DirectionalRule rule) {
+  return rule == DirectionalRule::kSingleThreshold ? "single-threshold" : "legacy-0.3.0";
+}
+
 Test directional(const Interval& effect, double m, DirectionalRule rule) {
   const double yes_above = rule == DirectionalRule::kSingleThreshold ? m : 0.0;
   Test t{Support::kUnclear, in_widths(effect.lo - yes_above, width(effect))};
@@ -71,7 +75,7 @@ Test at_least(const Interval& value, double limit) {
   return t;
 }
 
-double weakest(std::initializer_list<double> margins) {
+double weakest(const std::vector<double>& margins) {
   double out = INFINITY;
   for (double m : margins) {
     if (std::isnan(m)) return NAN;
@@ -80,7 +84,7 @@ double weakest(std::initializer_list<double> margins) {
   return margins.size() ? out : NAN;
 }
 
-Test all_of(std::initializer_list<Test> tests) {
+Test all_of(const std::vector<Test>& tests) {
   bool all_yes = true;
   Test out{Support::kUnclear, INFINITY};
   for (const Test& t : tests) {

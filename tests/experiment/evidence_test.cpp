@@ -58,6 +58,8 @@ TEST(Evidence, DirectionalLegacyRuleSaysYesAboveZeroAndNoBelowM) {
 }
 
 TEST(Evidence, BothDirectionalRulesAgreeWhenMIsZero) {
+  EXPECT_EQ(directional_rule_name(kSingle), "single-threshold");
+  EXPECT_EQ(directional_rule_name(kLegacy), "legacy-0.3.0");
   for (const Interval& e : {Interval{0.125, 0.375}, Interval{-0.375, -0.125}, Interval{-0.25, 0.5},
                             Interval{0.0, 0.25}, Interval{-0.25, 0.0}}) {
     const evidence::Test s = directional(e, 0.0, kSingle), l = directional(e, 0.0, kLegacy);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -66,6 +65,9 @@ enum class DirectionalRule {
   kLegacy030,
 };
 
+/// Name of a directional rule: "single-threshold", "legacy-0.3.0".
+std::string_view directional_rule_name(DirectionalRule rule);
+
 /// A distance from a threshold (positive on the claimed side) in units of a width, the width
 /// floored at 1e-6 (a degenerate interval gives a large, finite margin); NaN when either is NaN.
 double in_widths(double distance, double width);
@@ -90,11 +92,11 @@ Test at_least(const Interval& value, double limit);
 
 /// The smallest of several margins: a conjunction is as close to failing as its weakest part.
 /// NaN when any is NaN or there is none.
-double weakest(std::initializer_list<double> margins);
+double weakest(const std::vector<double>& margins);
 
 /// The conjunction of several tests: no when one says no, yes when all say yes; the weakest
 /// margin (NaN when any is NaN).
-Test all_of(std::initializer_list<Test> tests);
+Test all_of(const std::vector<Test>& tests);
 
 /// The support of a conjunction of parts: no as soon as one part says no, yes when every part
 /// says yes, unclear otherwise and when there is no part.

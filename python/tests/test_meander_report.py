@@ -70,6 +70,35 @@ def test_overlapping_intervals_are_not_called_a_difference(tmp_path):
     assert "no algorithm is clearly hurt by a larger d_lost" in first
 
 
+def test_a_difference_is_decided_by_newcombes_interval_with_the_old_rule_beside(tmp_path):
+    # 40/50 against 29/50 at the strongest meander: the Wilson intervals overlap ([0.67, 0.89],
+    # [0.44, 0.71]), Newcombe's interval of the difference does not reach 0 ([+0.04, +0.38])
+    out = write(tmp_path, [
+        sweep("M", "algorithms", "controller.algorithm", "algorithm",
+              {"casting": [45, 42, 40], "surge-cast": [50, 40, 29]}),
+        sweep("L", "surge-cast: d_lost", "surge_cast.d_lost", "d_lost",
+              {"0.5": [50, 45, 40], "2.0": [50, 40, 29]}),
+    ])
+    report.build_report(out)
+    md = (out / "report.md").read_text()
+    first = md.splitlines()[0]
+    assert "casting degrades least" in first and "do not separate" not in first
+    assert "a larger d_lost hurts surge-cast in strong meander" in first
+    assert ("at the strongest meander casting against surge-cast: difference +22 points [+4, +38] "
+            "(Newcombe 95%) -> yes (0.3.0's rule: Wilson intervals overlapping)") in md
+    assert "(22 points lower, [-38, -4] Newcombe 95% -> no)" in md
+    assert "By 0.3.0's rule (the Wilson intervals overlapping) it makes no clear difference." in md
+
+
+def test_the_line_that_degrades_least_may_still_succeed_less(tmp_path):
+    out = write(tmp_path, [sweep("M", "algorithms", "controller.algorithm", "algorithm",
+                                 {"casting": [20, 20, 18], "surge-spiral": [50, 50, 45]})])
+    report.build_report(out)
+    first = (out / "report.md").read_text().splitlines()[0]
+    assert ("casting degrades least, but still succeeds less than surge-spiral at the strongest "
+            "meander") in first
+
+
 def test_a_sweep_without_a_strength_axis_is_refused(tmp_path):
     bad = sweep("M", "algorithms", "controller.algorithm", "algorithm", {"casting": [1, 2, 3]})
     bad["axes"][1]["key"] = "sim.dt"

@@ -1095,24 +1095,20 @@ void bind_evidence(py::module_& m) {
       },
       py::arg("effect"), py::arg("m"), py::arg("rule"),
       "(verdict, margin): the effect above m (single-threshold) or 0 (legacy-0.3.0), or below m");
-  ev.def(
-      "within",
-      [](const PyInterval& effect, double margin) {
-        return py_test(pt::evidence::within(interval_of(effect), margin));
-      },
-      py::arg("effect"), py::arg("margin"), "(verdict, margin): the effect inside +-margin");
-  ev.def(
-      "below",
-      [](const PyInterval& value, double limit) {
-        return py_test(pt::evidence::below(interval_of(value), limit));
-      },
-      py::arg("value"), py::arg("limit"), "(verdict, margin): the quantity below the limit");
-  ev.def(
-      "at_least",
-      [](const PyInterval& value, double limit) {
-        return py_test(pt::evidence::at_least(interval_of(value), limit));
-      },
-      py::arg("value"), py::arg("limit"), "(verdict, margin): the quantity at least the limit");
+  // the tests of an interval against one number
+  const auto def_test = [&ev](const char* name,
+                              pt::evidence::Test (*test)(const pt::Interval&, double),
+                              const char* interval, const char* number, const char* doc) {
+    ev.def(
+        name, [test](const PyInterval& i, double x) { return py_test(test(interval_of(i), x)); },
+        py::arg(interval), py::arg(number), doc);
+  };
+  def_test("within", &pt::evidence::within, "effect", "margin",
+           "(verdict, margin): the effect inside +-margin");
+  def_test("below", &pt::evidence::below, "value", "limit",
+           "(verdict, margin): the quantity below the limit");
+  def_test("at_least", &pt::evidence::at_least, "value", "limit",
+           "(verdict, margin): the quantity at least the limit");
   ev.def(
       "all_of",
       [](const std::vector<PyTest>& tests) {

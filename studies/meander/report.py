@@ -20,7 +20,7 @@ from plumetrace._files import (MAX_RESULTS_BYTES, BadPath, exit_status, output_f
 
 from plumetrace.report.figures import _new_figure, _save
 from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
-from plumetrace.report.wording import change, difference
+from plumetrace.report.wording import change, difference, points
 
 STRENGTH_KEY = "wind.meander_gain"
 COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1")
@@ -122,18 +122,25 @@ def interval(c: Curve, i: int) -> str:
 
 def compare(a: Curve, b: Curve, i: int) -> tuple:
     """Whether line a succeeds more than line b at point i: the directional test (m =
-    MIN_EFFECT) on Newcombe's 95% interval of the difference, the interval in points, and the
+    MIN_EFFECT) on Newcombe's 95% interval of the difference, the interval in words, and the
     rule of 0.3.0 beside it (the two Wilson intervals apart: True, False or None when unknown)."""
     d = evidence.newcombe_difference(a.successes[i], a.runs[i], b.successes[i], b.runs[i])
     test = evidence.directional(d, MIN_EFFECT)
-    figures = f"[{signed_points(d[0])}, {signed_points(d[1])}]"
     apart = None if None in (a.lo[i], a.hi[i], b.lo[i], b.hi[i]) else (
         a.lo[i] > b.hi[i] or a.hi[i] < b.lo[i])
-    return test, figures, apart
+    return test, f"Newcombe 95%: {range_words(*d)}", apart
 
 
-def signed_points(v: float) -> str:
-    return f"{100 * v:+.0f}" if v == v else "n/a"
+def range_words(lo: float, hi: float) -> str:
+    """An interval of a difference of rates in words: "11 to 43 points higher", "4 to 17 points
+    lower", "17 points lower to 4 points higher"."""
+    if lo != lo or hi != hi:
+        return "unknown"
+    if lo >= 0:
+        return f"{round(100 * lo)} to {points(hi)} higher"
+    if hi <= 0:
+        return f"{round(-100 * hi)} to {points(lo)} lower"
+    return f"{points(lo)} lower to {points(hi)} higher"
 
 
 def old_rule(apart) -> str:
@@ -163,9 +170,9 @@ def degradation(lines: list) -> tuple:
     else:
         verdict = (f"{best.label} {least} in the point estimates, but the data do not "
                    f"separate it from {runner.label} at the strongest meander")
-    parts.append(f"at the strongest meander {best.label} against {runner.label}: difference "
-                 f"{signed_points(best.rate[-1] - runner.rate[-1])} points {figures} (Newcombe "
-                 f"95%) -> {test.verdict} (0.3.0's rule: Wilson intervals {old_rule(apart)})")
+    parts.append(f"at the strongest meander {best.label} against {runner.label}: "
+                 f"{difference(best.rate[-1], runner.rate[-1])} ({figures}) -> {test.verdict} "
+                 f"(0.3.0's rule: Wilson intervals {old_rule(apart)})")
     return verdict, "; ".join(parts) + "."
 
 
@@ -182,8 +189,7 @@ def d_lost_effect(lines: list) -> tuple:
               "helps" if large.rate[-1] > small.rate[-1] else "hurts")
     text = (f"d_lost {large.label} against {small.label}: {interval(large, -1)} against "
             f"{interval(small, -1)} at the strongest meander "
-            f"({difference(large.rate[-1], small.rate[-1])}, {figures} Newcombe 95% -> "
-            f"{test.verdict}), "
+            f"({difference(large.rate[-1], small.rate[-1])}; {figures} -> {test.verdict}), "
             f"{difference(large.rate[0], small.rate[0])} in the weakest. By 0.3.0's rule (the "
             f"Wilson intervals {old_rule(apart)}) it {before}.")
     return verdict, text

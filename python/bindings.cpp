@@ -17,7 +17,9 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -29,6 +31,7 @@
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/evidence.hpp"
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/exports.hpp"
@@ -1043,6 +1046,97 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
   return out;
 }
 
+// the evidence library's values as plumetrace.evidence writes them: intervals as (lo, hi),
+// tests as (verdict, margin) with verdicts "yes", "no", "unclear"
+
+using PyInterval = std::pair<double, double>;
+using PyTest = std::pair<std::string, double>;
+
+pt::Interval interval_of(const PyInterval& i) { return {i.first, i.second}; }
+
+PyInterval py_interval(const pt::Interval& i) { return {i.lo, i.hi}; }
+
+PyTest py_test(const pt::evidence::Test& t) {
+  return {std::string(pt::evidence::support_name(t.support)), t.margin};
+}
+
+pt::evidence::Test test_of(const PyTest& t) {
+  for (const auto s :
+       {pt::evidence::Support::kYes, pt::evidence::Support::kNo, pt::evidence::Support::kUnclear}) {
+    if (pt::evidence::support_name(s) == t.first) return {s, t.second};
+  }
+  throw py::value_error("verdict '" + t.first + "': use yes, no or unclear");
+}
+
+pt::evidence::DirectionalRule rule_of(const std::string& name) {
+  for (const auto r : {pt::evidence::DirectionalRule::kSingleThreshold,
+                       pt::evidence::DirectionalRule::kLegacy030}) {
+    if (pt::evidence::directional_rule_name(r) == name) return r;
+  }
+  throw py::value_error("rule '" + name + "': use single-threshold or legacy-0.3.0");
+}
+
+// a mean as (n, mean, stddev), what Welch's interval reads of it
+pt::MeanCi mean_of(const std::tuple<std::int64_t, double, double>& m) {
+  pt::MeanCi out;
+  out.n = std::get<0>(m);
+  out.mean = std::get<1>(m);
+  out.stddev = std::get<2>(m);
+  return out;
+}
+
+void bind_evidence(py::module_& m) {
+  py::module_ ev = m.def_submodule(
+      "evidence", "the evidence library (experiment/evidence.hpp); use plumetrace.evidence");
+  ev.def(
+      "directional",
+      [](const PyInterval& effect, double m, const std::string& rule) {
+        return py_test(pt::evidence::directional(interval_of(effect), m, rule_of(rule)));
+      },
+      py::arg("effect"), py::arg("m"), py::arg("rule"),
+      "(verdict, margin): the effect above m (single-threshold) or 0 (legacy-0.3.0), or below m");
+  // the tests of an interval against one number
+  const auto def_test = [&ev](const char* name,
+                              pt::evidence::Test (*test)(const pt::Interval&, double),
+                              const char* interval, const char* number, const char* doc) {
+    ev.def(
+        name, [test](const PyInterval& i, double x) { return py_test(test(interval_of(i), x)); },
+        py::arg(interval), py::arg(number), doc);
+  };
+  def_test("within", &pt::evidence::within, "effect", "margin",
+           "(verdict, margin): the effect inside +-margin");
+  def_test("below", &pt::evidence::below, "value", "limit",
+           "(verdict, margin): the quantity below the limit");
+  def_test("at_least", &pt::evidence::at_least, "value", "limit",
+           "(verdict, margin): the quantity at least the limit");
+  ev.def(
+      "all_of",
+      [](const std::vector<PyTest>& tests) {
+        std::vector<pt::evidence::Test> ts;
+        for (const PyTest& t : tests) ts.push_back(test_of(t));
+        return py_test(pt::evidence::all_of(ts));
+      },
+      py::arg("tests"), "(verdict, margin) of a conjunction of (verdict, margin) tests");
+  ev.def("weakest", &pt::evidence::weakest, py::arg("margins"),
+         "the smallest margin; NaN when any is NaN or there is none");
+  ev.def(
+      "newcombe_difference",
+      [](std::int64_t k1, std::int64_t n1, std::int64_t k2, std::int64_t n2) {
+        return py_interval(pt::newcombe_difference(k1, n1, k2, n2));
+      },
+      py::arg("successes1"), py::arg("n1"), py::arg("successes2"), py::arg("n2"),
+      "(lo, hi): Newcombe's 95% interval of p1 - p2");
+  ev.def(
+      "relative_difference",
+      [](const std::tuple<std::int64_t, double, double>& a,
+         const std::tuple<std::int64_t, double, double>& b,
+         const std::tuple<std::int64_t, double, double>& ref) {
+        return py_interval(pt::evidence::relative_difference(mean_of(a), mean_of(b), mean_of(ref)));
+      },
+      py::arg("a"), py::arg("b"), py::arg("ref"),
+      "(lo, hi): Welch's 95% interval of (mean_a - mean_b) / mean_ref, means as (n, mean, sd)");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -1166,6 +1260,7 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(q.q1, q.median, q.q3);
       },
       py::arg("values"), "lower quartile, median, upper quartile (NaN skipped; type 7)");
+  bind_evidence(m);
 
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")

@@ -23,7 +23,8 @@ your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plum
 (matplotlib helpers), ``plumetrace.report`` (the reproduction report,
 ``python3 -m plumetrace.report OUT_DIR``, and ``plumetrace.report(rows, out=...)`` for any
 sweep), ``plumetrace.sweeps`` (dict sweeps and their statistics), ``plumetrace.calibrate`` (the
-calibration of the paper's unknowns). ``dir(plumetrace)`` lists all of it.
+calibration of the paper's unknowns), ``plumetrace.evidence`` (the statistical tests studies decide
+with). ``dir(plumetrace)`` lists all of it.
 """
 
 __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning", "StoreError",
@@ -31,7 +32,8 @@ __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning",
            "run", "sweep", "__version__"]
 
 # the submodules a user imports, loaded on first use
-_SUBMODULES = ("calibrate", "controllers", "env", "plots", "report", "studies", "sweeps")
+_SUBMODULES = ("calibrate", "controllers", "env", "evidence", "plots", "report", "studies",
+               "sweeps")
 
 
 def __getattr__(name):

@@ -39,6 +39,18 @@ def write(tmp_path, sweeps):
     return tmp_path
 
 
+def first_line(tmp_path, algorithms, d_lost_key, d_lost):
+    """The report's title for an algorithms sweep and one d_lost sweep (successes of 50 at gains
+    0, 1 and 2), the report written into tmp_path."""
+    out = write(tmp_path, [
+        sweep("M", "algorithms", "controller.algorithm", "algorithm", algorithms),
+        sweep("L", f"{d_lost_key.split('.')[0].replace('_', '-')}: d_lost", d_lost_key, "d_lost",
+              d_lost),
+    ])
+    report.build_report(out)
+    return (out / "report.md").read_text().splitlines()[0]
+
+
 def test_the_title_names_the_algorithm_that_degrades_least_and_the_d_lost_effect(tmp_path):
     out = write(tmp_path, [
         sweep("M", "algorithms", "controller.algorithm", "algorithm",
@@ -58,16 +70,33 @@ def test_the_title_names_the_algorithm_that_degrades_least_and_the_d_lost_effect
 
 
 def test_overlapping_intervals_are_not_called_a_difference(tmp_path):
-    out = write(tmp_path, [
-        sweep("M", "algorithms", "controller.algorithm", "algorithm",
-              {"casting": [40, 38, 35], "surge-cast": [40, 37, 33]}),
-        sweep("L", "casting: d_lost", "casting.d_lost", "d_lost",
-              {"0.5": [40, 38, 36], "2.0": [40, 37, 34]}),
-    ])
-    report.build_report(out)
-    first = (out / "report.md").read_text().splitlines()[0]
+    first = first_line(tmp_path, {"casting": [40, 38, 35], "surge-cast": [40, 37, 33]},
+                       "casting.d_lost", {"0.5": [40, 38, 36], "2.0": [40, 37, 34]})
     assert "do not separate it from surge-cast" in first
     assert "no algorithm is clearly hurt by a larger d_lost" in first
+
+
+def test_a_difference_is_decided_by_newcombes_interval_with_the_old_rule_beside(tmp_path):
+    # 40/50 against 29/50 at the strongest meander: the Wilson intervals overlap ([0.67, 0.89],
+    # [0.44, 0.71]), Newcombe's interval of the difference does not reach 0 ([+0.04, +0.38])
+    first = first_line(tmp_path, {"casting": [45, 42, 40], "surge-cast": [50, 40, 29]},
+                       "surge_cast.d_lost", {"0.5": [50, 45, 40], "2.0": [50, 40, 29]})
+    md = (tmp_path / "report.md").read_text()
+    assert "casting degrades least" in first and "do not separate" not in first
+    assert "a larger d_lost hurts surge-cast in strong meander" in first
+    assert ("at the strongest meander casting against surge-cast: 22 points higher (Newcombe "
+            "95%: 4 to 38 points higher) -> yes (0.3.0's rule: Wilson intervals overlapping)") in md
+    assert "(22 points lower; Newcombe 95%: 4 to 38 points lower -> no)" in md
+    assert "By 0.3.0's rule (the Wilson intervals overlapping) it makes no clear difference." in md
+
+
+def test_the_line_that_degrades_least_may_still_succeed_less(tmp_path):
+    out = write(tmp_path, [sweep("M", "algorithms", "controller.algorithm", "algorithm",
+                                 {"casting": [20, 20, 18], "surge-spiral": [50, 50, 45]})])
+    report.build_report(out)
+    first = (out / "report.md").read_text().splitlines()[0]
+    assert ("casting degrades least, but still succeeds less than surge-spiral at the strongest "
+            "meander") in first
 
 
 def test_a_sweep_without_a_strength_axis_is_refused(tmp_path):

@@ -2,6 +2,7 @@
 changes as "rises"/"falls" with an unsigned size (report/wording.py and the sentences that use
 it), at the boundaries: 0, 1, all, equal, rising, falling."""
 
+import re
 import pytest
 
 from plumetrace.report import wording
@@ -109,7 +110,7 @@ def _curve(label, rates):
     c = meander.Curve(label)
     for x, r in zip((0.0, 1.0, 2.0), rates):
         c.add(x, {"success_rate": r, "success_lo": max(0.0, r - 0.1),
-                  "success_hi": min(1.0, r + 0.1), "runs": 50})
+                  "success_hi": min(1.0, r + 0.1), "runs": 50, "successes": round(50 * r)})
     return c
 
 
@@ -130,10 +131,13 @@ def test_meander_changes_are_rises_and_falls_never_a_signed_drop():
 def test_meander_d_lost_differences_are_higher_lower_or_the_same():
     _, text = meander.d_lost_effect([_curve("0.5", [0.5, 0.5, 0.6]),
                                      _curve("2.0", [0.5, 0.45, 0.3])])
-    assert "(30 points lower), the same in the weakest." in text
+    assert ("(30 points lower; Newcombe 95%: 11 to 47 points lower -> no), the same in the "
+            "weakest.") in text
     _, text = meander.d_lost_effect([_curve("0.5", [0.5, 0.5, 0.3]),
                                      _curve("2.0", [0.6, 0.45, 0.35])])
-    assert "(5 points higher), 10 points higher in the weakest." in text
+    assert ("(5 points higher; Newcombe 95%: 12 points lower to 24 points higher -> unclear), "
+            "10 points higher in the weakest.") in text
+    assert not re.search(r"[+-]\d", text), "no signed differences"
 
 
 # -- any sweep's report: the points with runs missing -------------------------------------------

@@ -2,16 +2,59 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstdio>
 #include <initializer_list>
-#include <utility>
 
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/experiment/evidence.hpp"
 
 namespace plumetrace {
 
 namespace {
+
+// the claims are stated in the words of the evidence library (experiment/evidence.hpp)
+using evidence::all_of;
+using evidence::at_least;
+using evidence::below;
+using evidence::decide;
+using evidence::Decision;
+using evidence::describe;
+using evidence::DirectionalRule;
+using evidence::fit_line;
+using evidence::format;
+using evidence::Group;
+using evidence::in_widths;
+using evidence::indices;
+using evidence::interval_text;
+using evidence::join;
+using evidence::LineFit;
+using evidence::lower_half;
+using evidence::margin_pct;
+using evidence::negate;
+using evidence::num;
+using evidence::Part;
+using evidence::part;
+using evidence::pct;
+using evidence::pct_interval_text;
+using evidence::Points;
+using evidence::pool;
+using evidence::pool_sets;
+using evidence::rate_difference;
+using evidence::relative_difference;
+using evidence::relative_point;
+using evidence::scaled;
+using evidence::size_of;
+using evidence::Spread;
+using evidence::spread;
+using evidence::Support;
+using evidence::symbol;
+using evidence::Test;
+using evidence::thirds;
+using evidence::unclear_because;
+using evidence::upper_half;
+using evidence::value_text;
+using evidence::weakest;
+using evidence::width;
+using evidence::within;
 
 // Thresholds of the decision rules; docs/claims.md gives the reason for each. They were fixed
 // before any data were looked at and must not be changed to make a claim hold.
@@ -34,315 +77,19 @@ constexpr double kLowRate = 0.50;            // claim 8: rise over the range / o
 constexpr double kLackOfFitAlpha = 0.05;     // claim 8: lack-of-fit test level
 constexpr double kMaxNonlinearity = 0.25;    // claim 8: largest deviation / rise
 constexpr double kMuchLess = 0.50;           // claim 11: "much less" = less than half
+// How every directional part reads its effect against its m: the rule of 0.3.0 (docs/claims.md,
+// "The tests applied to each part").
+constexpr DirectionalRule kDirectionalRule = DirectionalRule::kLegacy030;
 
-// formatting
-
-template <typename... Args>
-std::string format(const char* pattern, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, pattern, args...);
-  return buf;
-}
-
-std::string num(double v) { return std::isnan(v) ? "n/a" : format("%.3f", v); }
-
-std::string pct(double v) { return std::isnan(v) ? "n/a" : format("%+.1f%%", 100.0 * v); }
-
-std::string margin_pct(double v) { return format("%.0f%%", 100.0 * v); }
-
-// why: appending instead of "[" + a + ... avoids GCC 12's false -Wrestrict (GCC bug 105329)
-std::string bracket(const std::string& lo, const std::string& hi) {
-  std::string out = "[";
-  out.append(lo).append(", ").append(hi).append("]");
-  return out;
-}
-
-std::string interval(const Interval& i) { return bracket(num(i.lo), num(i.hi)); }
-
-std::string pct_interval(const Interval& i) { return bracket(pct(i.lo), pct(i.hi)); }
-
-std::string join(const std::vector<std::string>& parts, const char* sep) {
-  std::string out;
-  for (const auto& p : parts) {
-    if (!out.empty()) out += sep;
-    out += p;
-  }
-  return out;
-}
-
-// the parts of a claim and how they combine
-
-enum class Support { kYes, kNo, kUnclear };
-
-// The outcome of one test: its support and its signed margin (docs/claims.md, "Margins"): how far
-// the interval lies on the claimed side of the threshold, in widths of the interval; >= 0 when
-// the test says yes (> 0 but exactly at an "at least" limit), < 0 otherwise, NaN when the
-// interval cannot be computed.
-struct Test {
-  Support support = Support::kUnclear;
-  double margin = NAN;
-};
-
-struct Part {
-  Support support = Support::kUnclear;
-  double margin = NAN;
-  std::string text;
-};
-
-Part part(const Test& test, const std::string& text) {
-  const Support s = test.support;
-  const char* word = s == Support::kYes ? "yes" : s == Support::kNo ? "no" : "unclear";
-  return {s, test.margin, text + " -> " + word};
-}
-
-// A distance from a threshold (positive on the claimed side) in units of a width; NaN when
-// either is not a number. why: a floor on the width keeps a zero-width interval (a single
-// degenerate value) from giving an infinite margin.
-double in_widths(double distance, double width) {
-  constexpr double kMinWidth = 1e-6;
-  if (std::isnan(distance) || std::isnan(width)) return NAN;
-  return distance / std::max(width, kMinWidth);
-}
-
-double width(const Interval& i) { return i.hi - i.lo; }
-
-// "The effect is positive": yes when the interval excludes zero, no when it excludes every
-// effect of at least min_effect. NaN ends give unclear.
-Test directional(const Interval& effect, double min_effect) {
-  Test t{Support::kUnclear, in_widths(effect.lo, width(effect))};
-  if (effect.lo > 0.0)
-    t.support = Support::kYes;
-  else if (effect.hi < min_effect)
-    t.support = Support::kNo;
-  return t;
-}
-
-// "The effect is negligible" (two-sided): yes when the interval lies inside (-margin, margin),
-// no when it lies wholly outside.
-Test within(const Interval& effect, double margin) {
-  Test t{Support::kUnclear,
-         in_widths(std::fmin(effect.lo + margin, margin - effect.hi), width(effect))};
-  if (std::isnan(effect.lo) || std::isnan(effect.hi)) t.margin = NAN;
-  if (effect.lo > -margin && effect.hi < margin)
-    t.support = Support::kYes;
-  else if (effect.lo >= margin || effect.hi <= -margin)
-    t.support = Support::kNo;
-  return t;
-}
-
-// "The quantity is below the limit".
-Test below(const Interval& value, double limit) {
-  Test t{Support::kUnclear, in_widths(limit - value.hi, width(value))};
-  if (value.hi < limit)
-    t.support = Support::kYes;
-  else if (value.lo >= limit)
-    t.support = Support::kNo;
-  return t;
-}
-
-// "The quantity is at least the limit".
-Test at_least(const Interval& value, double limit) {
-  Test t{Support::kUnclear, in_widths(value.lo - limit, width(value))};
-  if (value.lo >= limit)
-    t.support = Support::kYes;
-  else if (value.hi < limit)
-    t.support = Support::kNo;
-  return t;
-}
-
-// The smallest of several margins: a conjunction is as close to failing as its weakest part.
-// NaN when any is NaN.
-double weakest(std::initializer_list<double> margins) {
-  double out = INFINITY;
-  for (double m : margins) {
-    if (std::isnan(m)) return NAN;
-    out = std::fmin(out, m);
-  }
-  return margins.size() ? out : NAN;
-}
-
-Test all_of(std::initializer_list<Test> tests) {
-  bool all_yes = true;
-  Test out{Support::kUnclear, INFINITY};
-  for (const Test& t : tests) {
-    out.margin =
-        std::isnan(t.margin) || std::isnan(out.margin) ? NAN : std::fmin(out.margin, t.margin);
-    if (t.support == Support::kNo) out.support = Support::kNo;
-    if (t.support != Support::kYes) all_yes = false;
-  }
-  if (out.support != Support::kNo && all_yes) out.support = Support::kYes;
-  return out;
+// A directional part under the claims' rule.
+Test directional(const Interval& effect, double m) {
+  return evidence::directional(effect, m, kDirectionalRule);
 }
 
 Verdict verdict_of(Support s) {
   return s == Support::kYes  ? Verdict::kHolds
          : s == Support::kNo ? Verdict::kDoesNotHold
                              : Verdict::kUnclear;
-}
-
-// A claim is a conjunction of its parts.
-Verdict combine(const std::vector<Part>& parts) {
-  if (parts.empty()) return Verdict::kUnclear;
-  bool all_yes = true;
-  for (const Part& p : parts) {
-    if (p.support == Support::kNo) return Verdict::kDoesNotHold;
-    if (p.support != Support::kYes) all_yes = false;
-  }
-  return all_yes ? Verdict::kHolds : Verdict::kUnclear;
-}
-
-struct Decision {
-  Verdict verdict = Verdict::kUnclear;
-  std::string evidence;
-  std::vector<ClaimPart> parts;
-  double margin = NAN;
-};
-
-// The verdict of the parts; the evidence is an optional preamble, then each part's figures.
-Decision decide(const std::vector<Part>& parts, const std::string& preamble = "") {
-  std::vector<std::string> texts;
-  if (!preamble.empty()) texts.push_back(preamble);
-  Decision d;
-  d.margin = parts.empty() ? NAN : INFINITY;
-  for (const Part& p : parts) {
-    texts.push_back(p.text);
-    d.parts.push_back({p.text, verdict_of(p.support), p.margin});
-    d.margin = std::isnan(p.margin) || std::isnan(d.margin) ? NAN : std::fmin(d.margin, p.margin);
-  }
-  d.verdict = combine(parts);
-  d.evidence = join(texts, "; ");
-  return d;
-}
-
-// pooled groups of points
-
-Interval negate(const Interval& i) { return {-i.hi, -i.lo}; }
-
-Interval scaled(const Interval& i, double f) {
-  if (!(f > 0.0) || !std::isfinite(f)) return {};
-  return {i.lo * f, i.hi * f};
-}
-
-struct Rate {
-  std::int64_t k = 0;
-  std::int64_t n = 0;
-  double p() const { return n > 0 ? static_cast<double>(k) / static_cast<double>(n) : NAN; }
-  Interval ci() const { return n > 0 ? wilson_interval(k, n) : Interval{}; }
-};
-
-std::string describe(const Rate& r) {
-  return format("%lld/%lld = ", static_cast<long long>(r.k), static_cast<long long>(r.n)) +
-         num(r.p()) + " " + interval(r.ci());
-}
-
-std::string describe(const MeanCi& m) {
-  if (m.n == 0) return "no successful run";
-  if (m.n == 1) return num(m.mean) + " (n=1)";
-  return num(m.mean) + " " + interval({m.lo, m.hi}) +
-         format(" (n=%lld)", static_cast<long long>(m.n));
-}
-
-// p_a - p_b, Newcombe's interval.
-Interval rate_difference(const Rate& a, const Rate& b) {
-  return newcombe_difference(a.k, a.n, b.k, b.n);
-}
-
-// (mean_a - mean_b) / mean_ref, Welch's interval scaled by the reference mean.
-Interval relative_difference(const MeanCi& a, const MeanCi& b, const MeanCi& ref) {
-  return scaled(welch_difference(a, b), 1.0 / ref.mean);
-}
-
-double relative_point(const MeanCi& a, const MeanCi& b, const MeanCi& ref) {
-  return (a.mean - b.mean) / ref.mean;
-}
-
-// A group of points of one set, pooled.
-struct Group {
-  std::string label;
-  Rate rate;
-  MeanCi overhead;
-};
-
-std::string value_text(double v) { return format("%g", v); }
-
-// Short name of the varied parameter: "casting.beta_deg" -> "beta".
-std::string symbol(const SetStats& s) {
-  std::string k = s.key;
-  if (const auto dot = k.rfind('.'); dot != std::string::npos) k = k.substr(dot + 1);
-  if (k.size() > 4 && k.ends_with("_deg")) k.resize(k.size() - 4);
-  return k.empty() ? "value" : k;
-}
-
-Group pool(const SetStats& s, const std::vector<int>& idx) {
-  Group g;
-  std::vector<MeanCi> parts;
-  for (int i : idx) {
-    g.rate.k += s.points[i].successes;
-    g.rate.n += s.points[i].runs;
-    parts.push_back(s.points[i].overhead);
-  }
-  g.overhead = pooled_mean_ci(parts);
-  if (!idx.empty()) {
-    const std::string first = value_text(s.values[idx.front()]);
-    const std::string last = value_text(s.values[idx.back()]);
-    g.label = s.name + " " + symbol(s) + " " + (idx.size() == 1 ? first : first + "-" + last);
-  }
-  return g;
-}
-
-std::vector<int> indices(int first, int end) {
-  std::vector<int> out;
-  for (int i = first; i < end; ++i) out.push_back(i);
-  return out;
-}
-
-int size_of(const SetStats& s) { return static_cast<int>(s.values.size()); }
-
-// The lower and upper halves of the axis (the middle value of an odd count in neither).
-std::vector<int> lower_half(const SetStats& s) { return indices(0, size_of(s) / 2); }
-std::vector<int> upper_half(const SetStats& s) {
-  return indices(size_of(s) - size_of(s) / 2, size_of(s));
-}
-
-// Exactly the same statistics: with a shared master seed the fixed-value points of an
-// algorithm's three sets are the same configuration and so the same runs.
-bool same_double(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
-bool same_runs(const PointStats& a, const PointStats& b) {
-  return a.runs == b.runs && a.successes == b.successes && a.walls == b.walls &&
-         a.timeouts == b.timeouts && a.gave_up == b.gave_up && a.overhead.n == b.overhead.n &&
-         same_double(a.overhead.mean, b.overhead.mean) &&
-         same_double(a.overhead.stddev, b.overhead.stddev) &&
-         same_double(a.mean_time, b.mean_time) && same_double(a.mean_losses, b.mean_losses);
-}
-
-// Pools points of several sets; a set's fixed-value point that repeats one already taken is
-// counted once. With fixed_only, only the fixed-value points are taken.
-Group pool_sets(const std::vector<const SetStats*>& sets, bool fixed_only, int* distinct) {
-  Group g;
-  std::vector<MeanCi> parts;
-  std::vector<const PointStats*> fixed_taken;
-  std::vector<std::string> names;
-  for (const SetStats* s : sets) {
-    for (int i = 0; i < size_of(*s); ++i) {
-      const bool is_fixed = i == s->fixed_index;
-      if (fixed_only && !is_fixed) continue;
-      const PointStats& p = s->points[i];
-      if (is_fixed) {
-        const bool repeat = std::any_of(fixed_taken.begin(), fixed_taken.end(),
-                                        [&p](const PointStats* q) { return same_runs(p, *q); });
-        if (repeat) continue;
-        fixed_taken.push_back(&p);
-      }
-      g.rate.k += p.successes;
-      g.rate.n += p.runs;
-      parts.push_back(p.overhead);
-    }
-    names.push_back(s->name);
-  }
-  g.overhead = pooled_mean_ci(parts);
-  g.label = join(names, "+");
-  if (distinct) *distinct = static_cast<int>(fixed_taken.size());
-  return g;
 }
 
 // access to the sets
@@ -399,12 +146,6 @@ Needed need(const Sets& sets, std::initializer_list<const char*> names, int min_
   return out;
 }
 
-Decision unclear_because(const std::string& problem) {
-  Decision d;
-  d.evidence = problem;
-  return d;
-}
-
 // recurring parts
 
 // "Overhead is higher in `high` than in `low`" (relative to `low`).
@@ -415,7 +156,7 @@ Part overhead_rises(const Group& low, const Group& high, double min_effect,
               what + ": " + low.label + " " + describe(low.overhead) + ", " + high.label + " " +
                   describe(high.overhead) + "; change " +
                   pct(relative_point(high.overhead, low.overhead, low.overhead)) + " " +
-                  pct_interval(rise));
+                  pct_interval_text(rise));
 }
 
 // "Success is lower in `low_success` than in `high_success`".
@@ -425,7 +166,7 @@ Part success_drops(const Group& high_success, const Group& low_success, double m
   return part(directional(drop, min_effect),
               what + ": " + high_success.label + " " + describe(high_success.rate) + ", " +
                   low_success.label + " " + describe(low_success.rate) + "; difference " +
-                  num(high_success.rate.p() - low_success.rate.p()) + " " + interval(drop));
+                  num(high_success.rate.p() - low_success.rate.p()) + " " + interval_text(drop));
 }
 
 // the claims
@@ -433,7 +174,7 @@ Part success_drops(const Group& high_success, const Group& low_success, double m
 Decision claim1(const Sets& sets) {
   const Needed n = need(sets, {"D", "E", "F"}, 1);
   if (!n.problem.empty()) return unclear_because(n.problem);
-  const Group all = pool_sets(n.sets, false, nullptr);
+  const Group all = pool_sets(n.sets, Points::kAll).group;
   return decide({part(at_least(all.rate.ci(), kVirtuallyAll),
                       all.label + " success " + describe(all.rate) + " vs " + num(kVirtuallyAll))});
 }
@@ -500,10 +241,10 @@ Decision claim3(const Sets& sets) {
   return decide(
       {part(either, "success " + lo.label + " " + describe(lo.rate) + ", " + hi.label + " " +
                         describe(hi.rate) + "; change " + num(hi.rate.p() - lo.rate.p()) + " " +
-                        interval(success_up) + "; overhead " + describe(lo.overhead) + " -> " +
+                        interval_text(success_up) + "; overhead " + describe(lo.overhead) + " -> " +
                         describe(hi.overhead) + "; change " +
                         pct(relative_point(hi.overhead, lo.overhead, lo.overhead)) + " " +
-                        pct_interval(overhead_up) + "; " + which)});
+                        pct_interval_text(overhead_up) + "; " + which)});
 }
 
 Decision claim4(const Sets& sets) {
@@ -522,14 +263,14 @@ Decision claim4(const Sets& sets) {
   parts.push_back(part(within(ds, kSuccessMargin),
                        "success barely changes: " + low.label + " " + describe(low.rate) + ", " +
                            mid.label + " " + describe(mid.rate) + "; change " +
-                           num(mid.rate.p() - low.rate.p()) + " " + interval(ds) + " vs +-" +
+                           num(mid.rate.p() - low.rate.p()) + " " + interval_text(ds) + " vs +-" +
                            num(kSuccessMargin)));
   const Interval dov = relative_difference(mid.overhead, low.overhead, low.overhead);
   parts.push_back(part(within(dov, kNegligibleOverhead),
                        "overhead barely changes: " + describe(low.overhead) + " -> " +
                            describe(mid.overhead) + "; change " +
                            pct(relative_point(mid.overhead, low.overhead, low.overhead)) + " " +
-                           pct_interval(dov) + " vs +-" + margin_pct(kNegligibleOverhead)));
+                           pct_interval_text(dov) + " vs +-" + margin_pct(kNegligibleOverhead)));
   return decide(parts);
 }
 
@@ -551,7 +292,7 @@ Decision claim6(const Sets& sets) {
                       "overhead lower at high d_lost: " + lo.label + " " + describe(lo.overhead) +
                           ", " + hi.label + " " + describe(hi.overhead) + "; decrease " +
                           pct(relative_point(lo.overhead, hi.overhead, lo.overhead)) + " " +
-                          pct_interval(fall))});
+                          pct_interval_text(fall))});
 }
 
 Decision claim7(const Sets& sets) {
@@ -565,80 +306,9 @@ Decision claim7(const Sets& sets) {
   parts.push_back(part(below(failure_rise, kSuccessMargin),
                        "failure rate not raised: " + lo.label + " " + describe(lo.rate) + ", " +
                            hi.label + " " + describe(hi.rate) + "; success drop " +
-                           num(lo.rate.p() - hi.rate.p()) + " " + interval(failure_rise) + " vs " +
-                           num(kSuccessMargin)));
+                           num(lo.rate.p() - hi.rate.p()) + " " + interval_text(failure_rise) +
+                           " vs " + num(kSuccessMargin)));
   return decide(parts);
-}
-
-// Least-squares line through the overheads of the successful runs against the parameter,
-// computed from each point's n, mean and standard deviation (points with n >= 2), with the
-// lack-of-fit F test against pure error.
-struct LineFit {
-  bool ok = false;
-  int points = 0;
-  std::int64_t n = 0;
-  double slope = NAN;
-  Interval slope_ci;
-  double level = NAN;  // fitted overhead at the smallest value used
-  double span = NAN;   // largest minus smallest value used
-  double lack_of_fit_p = NAN;
-  double max_deviation = NAN;  // largest |point mean - line|
-};
-
-LineFit fit_line(const SetStats& s) {
-  LineFit fit;
-  std::vector<int> used;
-  for (int i = 0; i < size_of(s); ++i) {
-    if (s.points[i].overhead.n >= 2 && std::isfinite(s.points[i].overhead.stddev)) {
-      used.push_back(i);
-    }
-  }
-  fit.points = static_cast<int>(used.size());
-  if (fit.points < 3) return fit;
-  double sn = 0, sx = 0, sy = 0;
-  for (int i : used) {
-    const double w = static_cast<double>(s.points[i].overhead.n);
-    sn += w;
-    sx += w * s.values[i];
-    sy += w * s.points[i].overhead.mean;
-  }
-  const double xbar = sx / sn, ybar = sy / sn;
-  double sxx = 0, sxy = 0, ss_pure = 0;
-  for (int i : used) {
-    const MeanCi& o = s.points[i].overhead;
-    const double w = static_cast<double>(o.n);
-    sxx += w * (s.values[i] - xbar) * (s.values[i] - xbar);
-    sxy += w * (s.values[i] - xbar) * (o.mean - ybar);
-    ss_pure += (w - 1.0) * o.stddev * o.stddev;
-  }
-  fit.n = static_cast<std::int64_t>(sn);
-  fit.slope = sxy / sxx;
-  const double intercept = ybar - fit.slope * xbar;
-  double ss_lack = 0;
-  fit.max_deviation = 0;
-  for (int i : used) {
-    const MeanCi& o = s.points[i].overhead;
-    const double dev = o.mean - (intercept + fit.slope * s.values[i]);
-    ss_lack += static_cast<double>(o.n) * dev * dev;
-    fit.max_deviation = std::max(fit.max_deviation, std::fabs(dev));
-  }
-  const double x_min = s.values[used.front()], x_max = s.values[used.back()];
-  fit.level = intercept + fit.slope * x_min;
-  fit.span = x_max - x_min;
-  const double dof = sn - 2.0;
-  const double se = std::sqrt((ss_pure + ss_lack) / dof / sxx);
-  const double t = student_t_quantile(0.975, dof);
-  fit.slope_ci = {fit.slope - t * se, fit.slope + t * se};
-  // lack of fit: F = (SS_lack / (k - 2)) / (SS_pure / (N - k)), upper tail via I_x(d2/2, d1/2)
-  const double d1 = fit.points - 2.0, d2 = sn - fit.points;
-  if (d2 > 0 && ss_pure > 0) {
-    const double f = (ss_lack / d1) / (ss_pure / d2);
-    fit.lack_of_fit_p = regularized_beta(d2 / (d2 + d1 * f), 0.5 * d2, 0.5 * d1);
-  } else if (d2 > 0) {
-    fit.lack_of_fit_p = ss_lack > 0 ? 0.0 : 1.0;
-  }
-  fit.ok = sxx > 0 && std::isfinite(fit.slope) && fit.level > 0;
-  return fit;
 }
 
 Decision claim8(const Sets& sets) {
@@ -658,9 +328,9 @@ Decision claim8(const Sets& sets) {
                                         static_cast<long long>(fit.n)) +
                                  num(fit.level) + " at d_cast " + value_text(g.values.front()) +
                                  ", rise over the range " + pct(fit.slope * to_rise) + " " +
-                                 pct_interval(rise);
+                                 pct_interval_text(rise);
     parts.push_back(part(directional(rise, kMinOverheadEffect), "grows: " + fit_text));
-    parts.push_back(part(below(rise, kLowRate), "at a low rate: rise " + pct_interval(rise) +
+    parts.push_back(part(below(rise, kLowRate), "at a low rate: rise " + pct_interval_text(rise) +
                                                     " vs " + margin_pct(kLowRate)));
     const double rise_abs = std::fabs(fit.slope * fit.span);
     const double nonlinearity = fit.max_deviation / rise_abs;
@@ -699,9 +369,9 @@ Decision claim9(const Sets& sets) {
   if (drop.hi < rise.lo) mainly.support = Support::kNo;
   parts.push_back(part(mainly, "mainly success: relative success drop " +
                                    pct((lo.rate.p() - hi.rate.p()) / lo.rate.p()) + " " +
-                                   pct_interval(drop) + " vs overhead change " +
+                                   pct_interval_text(drop) + " vs overhead change " +
                                    pct(relative_point(hi.overhead, lo.overhead, lo.overhead)) +
-                                   " " + pct_interval(rise) + " (" + describe(lo.overhead) +
+                                   " " + pct_interval_text(rise) + " (" + describe(lo.overhead) +
                                    " -> " + describe(hi.overhead) + ")"));
   return decide(parts);
 }
@@ -727,9 +397,10 @@ AlgorithmAtFixed at_fixed(const Sets& sets, std::initializer_list<const char*> s
   }
   if (out.name.empty()) out.name = std::string(*set_names.begin()) + "-" + *(set_names.end() - 1);
   if (with_fixed.empty()) return out;
-  int distinct = 0;
-  out.group = pool_sets(with_fixed, true, &distinct);
-  out.group.label = out.name + " (" + out.group.label + format(", %d distinct)", distinct);
+  const evidence::PooledSets fixed = pool_sets(with_fixed, Points::kFixedOnly);
+  out.group = fixed.group;
+  out.group.label =
+      out.name + " (" + out.group.label + format(", %d distinct)", fixed.distinct_fixed);
   out.ok = true;
   return out;
 }
@@ -755,13 +426,13 @@ Decision claim10(const Sets& sets) {
   const auto success = [](const Group& a, const Group& b, const std::string& what) {
     const Interval d = rate_difference(a.rate, b.rate);
     return part(directional(d, kSuccessMargin),
-                what + ": " + num(a.rate.p() - b.rate.p()) + " " + interval(d));
+                what + ": " + num(a.rate.p() - b.rate.p()) + " " + interval_text(d));
   };
   const auto overhead = [](const Group& a, const Group& b, const std::string& what) {
     const Interval d = relative_difference(a.overhead, b.overhead, b.overhead);
     return part(directional(d, kMinOverheadEffect),
                 what + ": " + pct(relative_point(a.overhead, b.overhead, b.overhead)) + " " +
-                    pct_interval(d));
+                    pct_interval_text(d));
   };
   std::vector<Part> parts;
   const std::string &cn = cast.name, &spn = spiral.name, &scn = surge.name;
@@ -773,12 +444,12 @@ Decision claim10(const Sets& sets) {
   parts.push_back(
       part(within(ds, kSuccessMargin), scn + " comparable to " + spn +
                                            " in success: " + num(sc.rate.p() - sp.rate.p()) + " " +
-                                           interval(ds) + " vs +-" + num(kSuccessMargin)));
+                                           interval_text(ds) + " vs +-" + num(kSuccessMargin)));
   const Interval dov = relative_difference(sc.overhead, sp.overhead, sp.overhead);
   parts.push_back(
       part(within(dov, kNegligibleOverhead),
            "in overhead: " + pct(relative_point(sc.overhead, sp.overhead, sp.overhead)) + " " +
-               pct_interval(dov) + " vs +-" + margin_pct(kNegligibleOverhead)));
+               pct_interval_text(dov) + " vs +-" + margin_pct(kNegligibleOverhead)));
   return decide(parts, "at the fixed values: " + join(at, "; "));
 }
 
@@ -791,40 +462,10 @@ struct Importance {
   std::string text;
 };
 
-// Largest minus smallest of several quantities, with bounds from their intervals: at least the
-// largest lower end minus the smallest upper end, at most the largest upper end minus the
-// smallest lower end. NaN unless there are two quantities with finite intervals.
-struct Spread {
-  double point = NAN;
-  Interval bounds;
-};
-
-Spread spread(const std::vector<double>& values, const std::vector<Interval>& intervals) {
-  Spread out;
-  if (values.size() < 2) return out;
-  double v_max = -INFINITY, v_min = INFINITY, lo_max = -INFINITY, lo_min = INFINITY;
-  double hi_max = -INFINITY, hi_min = INFINITY;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (!std::isfinite(intervals[i].lo) || !std::isfinite(intervals[i].hi)) return out;
-    v_max = std::max(v_max, values[i]);
-    v_min = std::min(v_min, values[i]);
-    lo_max = std::max(lo_max, intervals[i].lo);
-    lo_min = std::min(lo_min, intervals[i].lo);
-    hi_max = std::max(hi_max, intervals[i].hi);
-    hi_min = std::min(hi_min, intervals[i].hi);
-  }
-  out.point = v_max - v_min;
-  out.bounds = {std::max(0.0, lo_max - hi_min), hi_max - lo_min};
-  return out;
-}
-
 Importance importance(const SetStats& s) {
-  const int size = size_of(s);
-  std::vector<Group> thirds;
-  for (int t = 0; t < 3; ++t) thirds.push_back(pool(s, indices(size * t / 3, size * (t + 1) / 3)));
   std::vector<double> rates, means;
   std::vector<Interval> rate_cis, mean_cis;
-  for (const Group& g : thirds) {
+  for (const Group& g : thirds(s)) {
     rates.push_back(g.rate.p());
     rate_cis.push_back(g.rate.ci());
     means.push_back(g.overhead.mean);
@@ -846,8 +487,8 @@ Importance importance(const SetStats& s) {
                       ? NAN
                       : std::max(success.bounds.hi, overhead.bounds.hi);
   out.text = s.name + " " + symbol(s) + ": success spread " + num(success.point) + " " +
-             interval(success.bounds) + ", overhead spread " + pct(overhead.point) + " " +
-             pct_interval(overhead.bounds);
+             interval_text(success.bounds) + ", overhead spread " + pct(overhead.point) + " " +
+             pct_interval_text(overhead.bounds);
   return out;
 }
 
@@ -864,9 +505,10 @@ Decision claim11(const Sets& sets) {
     if (lost.bounds.hi < kMuchLess * specific.bounds.lo) s.support = Support::kYes;
     if (lost.bounds.lo >= kMuchLess * specific.bounds.hi) s.support = Support::kNo;
     parts.push_back(part(s, n.sets[2 * a]->algorithm + ": " + lost.text + "; importance " +
-                                num(lost.point) + " " + interval(lost.bounds) + " vs " +
+                                num(lost.point) + " " + interval_text(lost.bounds) + " vs " +
                                 specific.text + "; importance " + num(specific.point) + " " +
-                                interval(specific.bounds) + "; needs < " + num(kMuchLess) + " x"));
+                                interval_text(specific.bounds) + "; needs < " + num(kMuchLess) +
+                                " x"));
   }
   return decide(parts);
 }
@@ -922,7 +564,9 @@ std::vector<ClaimResult> evaluate_claims(const std::map<std::string, SetStats>& 
   std::vector<ClaimResult> out;
   for (const ClaimDef& c : kClaims) {
     const Decision d = c.decide(sets);
-    out.push_back({c.id, c.text, d.verdict, d.evidence, d.parts, d.margin});
+    std::vector<ClaimPart> parts;
+    for (const Part& p : d.parts) parts.push_back({p.text, verdict_of(p.support), p.margin});
+    out.push_back({c.id, c.text, verdict_of(d.support), d.evidence, parts, d.margin});
   }
   return out;
 }

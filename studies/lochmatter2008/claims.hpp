@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/experiment/evidence.hpp"
 
 namespace plumetrace {
 
@@ -15,16 +15,6 @@ enum class Verdict { kHolds, kDoesNotHold, kUnclear };
 
 /// Name of a verdict: "holds", "does not hold", "unclear".
 std::string_view verdict_name(Verdict v);
-
-/// One experiment set: an algorithm with one varied parameter (docs/experiments.md).
-struct SetStats {
-  std::string name;                ///< "A".."I"
-  std::string algorithm;           ///< "casting", "surge-spiral", "surge-cast"
-  std::string key;                 ///< varied config key, e.g. "casting.beta_deg"
-  std::vector<double> values;      ///< axis values in increasing order
-  std::vector<PointStats> points;  ///< one per value
-  int fixed_index = -1;            ///< index of the paper's fixed value in `values`, -1 if absent
-};
 
 /// One tested part of a claim, with its signed margin (docs/claims.md, "Margins").
 struct ClaimPart {

@@ -3,7 +3,8 @@
 Reads OUT/results.json of `plumetrace study studies/meander` and draws, for each sweep, the two
 panels of the paper (success rate and distance overhead) against meander strength, one line per
 value of the sweep's other axis; then states from the data which algorithm degrades least and
-whether a larger d_lost hurts in meander.
+whether a larger d_lost hurts in meander, each by the evidence library's directional test on
+Newcombe's interval of a difference of success rates (plumetrace.evidence; docs/meander.md).
 """
 
 from __future__ import annotations
@@ -13,15 +14,20 @@ import sys
 from pathlib import Path
 from typing import Optional
 
+from plumetrace import evidence
 from plumetrace._files import (MAX_RESULTS_BYTES, BadPath, exit_status, output_folder,
                                read_input)
 
 from plumetrace.report.figures import _new_figure, _save
 from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
-from plumetrace.report.wording import change, difference
+from plumetrace.report.wording import change, difference, points
 
 STRENGTH_KEY = "wind.meander_gain"
 COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1")
+# The smallest difference of success rates the statements need: they state directions only
+# ("degrades least", "hurts", "helps"), so m = 0, where the single-threshold rule and the rule
+# of 0.3.0 agree (docs/meander.md, "How the report decides").
+MIN_EFFECT = 0.0
 
 
 class MeanderReportError(Exception):
@@ -35,6 +41,7 @@ class Curve:
         self.label = label
         self.failures: list = []  # per point: counts of walls, timeouts and gave_up
         self.x: list = []
+        self.successes: list = []
         self.rate: list = []
         self.lo: list = []
         self.hi: list = []
@@ -46,6 +53,7 @@ class Curve:
     def add(self, x: float, stats: dict) -> None:
         oh = stats.get("overhead") or {}
         self.x.append(x)
+        self.successes.append(stats["successes"])
         self.rate.append(stats["success_rate"])
         self.lo.append(stats["success_lo"])
         self.hi.append(stats["success_hi"])
@@ -71,7 +79,8 @@ def curves(sweep: dict) -> tuple:
         by_value.setdefault(str(value), Curve(str(value))).add(float(p["values"][s]), p["stats"])
     for c in by_value.values():
         order = sorted(range(len(c.x)), key=lambda i: c.x[i])
-        for name in ("x", "rate", "lo", "hi", "runs", "overhead", "oh_lo", "oh_hi", "failures"):
+        for name in ("x", "successes", "rate", "lo", "hi", "runs", "overhead", "oh_lo", "oh_hi",
+                     "failures"):
             setattr(c, name, [getattr(c, name)[i] for i in order])
     axis = sweep["axes"][o]
     return axis.get("label") or axis["key"], axis["key"], list(by_value.values())
@@ -111,41 +120,78 @@ def interval(c: Curve, i: int) -> str:
     return f"{pct(c.rate[i])} [{pct(c.lo[i])}, {pct(c.hi[i])}]"
 
 
+def compare(a: Curve, b: Curve, i: int) -> tuple:
+    """Whether line a succeeds more than line b at point i: the directional test (m =
+    MIN_EFFECT) on Newcombe's 95% interval of the difference, the interval in words, and the
+    rule of 0.3.0 beside it (the two Wilson intervals apart: True, False or None when unknown)."""
+    d = evidence.newcombe_difference(a.successes[i], a.runs[i], b.successes[i], b.runs[i])
+    test = evidence.directional(d, MIN_EFFECT)
+    apart = None if None in (a.lo[i], a.hi[i], b.lo[i], b.hi[i]) else (
+        a.lo[i] > b.hi[i] or a.hi[i] < b.lo[i])
+    return test, f"Newcombe 95%: {range_words(*d)}", apart
+
+
+def range_words(lo: float, hi: float) -> str:
+    """An interval of a difference of rates in words: "11 to 43 points higher", "4 to 17 points
+    lower", "17 points lower to 4 points higher"."""
+    if lo != lo or hi != hi:
+        return "unknown"
+    if lo >= 0:
+        return f"{round(100 * lo)} to {points(hi)} higher"
+    if hi <= 0:
+        return f"{round(-100 * hi)} to {points(lo)} lower"
+    return f"{points(lo)} lower to {points(hi)} higher"
+
+
+def old_rule(apart) -> str:
+    return ("unknown" if apart is None else "apart" if apart else "overlapping")
+
+
 def degradation(lines: list) -> tuple:
     """Sentence and short verdict on which line loses least success from the weakest to the
-    strongest meander; the data separate two lines only when their strongest-meander intervals
-    do not overlap."""
+    strongest meander; the data separate it from the runner-up when Newcombe's interval of the
+    difference of their success at the strongest meander lies wholly on one side of 0."""
     drops = sorted(((c.rate[0] - c.rate[-1], c) for c in lines), key=lambda d: d[0])
     best = drops[0][1]
     parts = [f"{c.label}: {interval(c, 0)} at gain {c.x[0]:g}, {interval(c, -1)} at gain "
              f"{c.x[-1]:g} (success {change(c.rate[0], c.rate[-1])})" for _, c in drops]
     runner = drops[1][1] if len(drops) > 1 else None
-    separated = runner is not None and (best.lo[-1] > runner.hi[-1] or best.hi[-1] < runner.lo[-1])
     # why: a line whose success does not fall is not said to degrade
     least = ("degrades least" if change(best.rate[0], best.rate[-1]).startswith("falls")
              else "does not degrade")
     if runner is None:
-        verdict = f"{best.label} alone"
-    elif separated:
+        return f"{best.label} alone", "; ".join(parts) + "."
+    test, figures, apart = compare(best, runner, -1)
+    if test.verdict == evidence.YES:
         verdict = f"{best.label} {least}"
+    elif test.verdict == evidence.NO:
+        verdict = (f"{best.label} {least}, but still succeeds less than {runner.label} at the "
+                   f"strongest meander")
     else:
         verdict = (f"{best.label} {least} in the point estimates, but the data do not "
                    f"separate it from {runner.label} at the strongest meander")
+    parts.append(f"at the strongest meander {best.label} against {runner.label}: "
+                 f"{difference(best.rate[-1], runner.rate[-1])} ({figures}) -> {test.verdict} "
+                 f"(0.3.0's rule: Wilson intervals {old_rule(apart)})")
     return verdict, "; ".join(parts) + "."
 
 
 def d_lost_effect(lines: list) -> tuple:
-    """Whether the largest d_lost succeeds less than the smallest at the strongest meander (by
-    non-overlapping 95% intervals), with the same comparison in the weakest meander."""
+    """Whether the largest d_lost succeeds less or more than the smallest at the strongest
+    meander (the directional test on Newcombe's interval of the difference), with the same
+    difference in the weakest meander and the verdict of the rule of 0.3.0 beside."""
     by_d = sorted(lines, key=lambda c: float(c.label))
     small, large = by_d[0], by_d[-1]
-    hurts = large.hi[-1] < small.lo[-1]
-    helps = large.lo[-1] > small.hi[-1]
+    test, figures, apart = compare(large, small, -1)
+    verdict = {evidence.YES: "helps", evidence.NO: "hurts"}.get(test.verdict,
+                                                              "makes no clear difference")
+    before = ("makes no clear difference" if not apart else
+              "helps" if large.rate[-1] > small.rate[-1] else "hurts")
     text = (f"d_lost {large.label} against {small.label}: {interval(large, -1)} against "
             f"{interval(small, -1)} at the strongest meander "
-            f"({difference(large.rate[-1], small.rate[-1])}), "
-            f"{difference(large.rate[0], small.rate[0])} in the weakest.")
-    verdict = "hurts" if hurts else "helps" if helps else "makes no clear difference"
+            f"({difference(large.rate[-1], small.rate[-1])}; {figures} -> {test.verdict}), "
+            f"{difference(large.rate[0], small.rate[0])} in the weakest. By 0.3.0's rule (the "
+            f"Wilson intervals {old_rule(apart)}) it {before}.")
     return verdict, text
 
 

@@ -1,19 +1,15 @@
 #include "lochmatter2008/summary.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
-#include <mutex>
 #include <set>
 #include <sstream>
-#include <system_error>
-#include <thread>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/parallel.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/io/json_util.hpp"
@@ -197,30 +193,8 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
   }
   // the re-runs, in parallel; each result lands in its own slot
   std::vector<FailedRun> done(jobs.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex failure_mutex;
-  std::exception_ptr failure;
-  const auto work = [&] {
-    try {
-      for (std::size_t i = next++; i < jobs.size(); i = next++) {
-        done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run);
-      }
-    } catch (...) {
-      // why: an exception leaving a thread ends the process; the caller rethrows it instead
-      const std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = jobs.size();
-    }
-  };
-  std::vector<std::thread> pool;
-  try {
-    for (int t = 1; t < std::max(1, info.threads); ++t) pool.emplace_back(work);
-  } catch (const std::system_error&) {
-    // why: the re-runs share one counter, so fewer threads than asked only take longer
-  }
-  work();
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  parallel_for(jobs.size(), info.threads,
+               [&](std::size_t i) { done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run); });
 
   for (std::size_t a = 0; a < algorithms.size(); ++a) {
     const double sx = algorithms[a]["source_x"], sy = algorithms[a]["source_y"];

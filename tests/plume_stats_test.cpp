@@ -222,10 +222,36 @@ TEST(PlumeStats, SpiralsReachTheBandNoSoonerThanItsDistanceAndWithinTheTurnsItNe
     EXPECT_NEAR(x, s.robot.start.x - st.d_lost, s.robot.wheel_speed * s.sim.dt + 1e-9);
   }
   // 0.3 m from the band: two turns of 0.222 m widen the spiral past it on either side
-  EXPECT_EQ(sp.within_turns, 6);
+  EXPECT_EQ(sp.reacquired, 6);
+  EXPECT_EQ(sp.walls + sp.out_of_turns, 0);
   for (const double d : sp.distances) EXPECT_GE(d, 0.3 - 0.01);
   for (const double t : sp.turns_to_odor) EXPECT_LE(t, 2.5);
   EXPECT_EQ(st.release.within_d_lost, 0);
+}
+
+// Where no odor is, every spiral ends where a run would: at a wall, or after its turns.
+TEST(PlumeStats, SpiralsThatFindNoOdorEndAtAWallOrAfterTheirTurns) {
+  Scenario s;
+  s.arena.y_min = -0.6;
+  s.arena.y_max = 0.6;
+  s.odor.threshold = 1e30;
+  s.robot.start_offset.x = 3.0;
+  s.sim.warmup = 2.0;
+  s.sim.warmup_auto = false;
+  derive_scenario(s);
+  PlumeStatsOptions o;
+  o.trials = 1;
+  o.surges = 2;
+  o.offsets = {};
+  o.across = {};
+  PlumeStats st = plume_stats(s, o);
+  EXPECT_EQ(st.spirals.lost, 2);
+  EXPECT_EQ(st.spirals.walls, 2);
+  EXPECT_EQ(st.spirals.reacquired + st.spirals.out_of_turns, 0);
+  o.turns = 0.5;
+  st = plume_stats(s, o);
+  EXPECT_EQ(st.spirals.out_of_turns, 2);
+  EXPECT_EQ(st.spirals.walls, 0);
 }
 
 TEST(PlumeStats, ResultsDoNotDependOnTheThreadCount) {

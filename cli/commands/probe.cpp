@@ -91,9 +91,10 @@ int print_plume_stats(const PlumeStats& st, bool json) {
               r.trials, r.within_d_lost, r.trials);
   const auto& s = st.spirals;
   std::printf(
-      "spirals: %d of %d surges lost the plume; odor within one turn: %d, within %g turns: %d; "
-      "median path to odor %.3f m\n",
-      s.lost, s.surges, s.within_one_turn, st.turns, s.within_turns, s.distance_median);
+      "spirals: %d of %d surges lost the plume; odor within one turn: %d, at all: %d (no odor "
+      "before a wall: %d, in %g turns: %d); median path to odor %.3f m\n",
+      s.lost, s.surges, s.within_one_turn, s.reacquired, s.walls, st.turns, s.out_of_turns,
+      s.distance_median);
   return 0;
 }
 

@@ -45,7 +45,8 @@ double spiral_turns(const SurgeSpiralParams& params, double arc) {
 }
 
 SensorPath spiral_path(const Pose& start, int curl, const SurgeSpiralParams& params,
-                       const RobotParams& robot, double z, double dt, double turns) {
+                       const RobotParams& robot, double z, double dt, double turns,
+                       const ArenaParams* arena, bool* wall) {
   // why: the controller's own law (SurgeSpiral::step): at each step the curvature of r = b theta
   // at the path length covered, counted from the spiral's centre; the robot's wheels set the speed
   const double b = spiral_b(params);
@@ -56,13 +57,24 @@ SensorPath spiral_path(const Pose& start, int curl, const SurgeSpiralParams& par
   RobotState state;
   state.pose = start;
   double theta = theta0;
+  const auto clear = [&](const Pose& p) {
+    const double r = robot.radius;
+    return !arena || (p.x - r > arena->x_min && p.x + r < arena->x_max && p.y - r > arena->y_min &&
+                      p.y + r < arena->y_max);
+  };
+  bool walled = false;
   for (;;) {
+    if (!clear(state.pose)) {
+      walled = true;
+      break;
+    }
     path.points.push_back({state.pose.x, state.pose.y, z});
     path.arc.push_back(state.odometer);
     theta = spiral_angle_at(b, offset + state.odometer, theta);
     if (theta >= end) break;
     step_robot(robot, Command::curve(curl * spiral_curvature(b, theta)), dt, state);
   }
+  if (wall) *wall = walled;
   return path;
 }
 
@@ -188,6 +200,7 @@ GapStats pool(const std::vector<const GapAnalysis*>& analyses, double d_lost) {
 struct SpiralRun {
   double loss_x = NAN;
   bool detected = false;
+  bool wall = false;   // its path ended at a wall
   double arc = NAN;    // path length to the detection (m)
   double turns = NAN;  // turns to the detection
 };
@@ -264,6 +277,13 @@ TrialStats measure_trial(const Scenario& scenario, const PlumeStatsOptions& opti
   std::vector<std::size_t> spirals;
   while (!sensors.done()) {
     sensors.read();
+    // a spiral ends at its first detection: only that one counts
+    for (const std::size_t i : spirals) {
+      const auto& odor = sensors.odor(i);
+      if (!odor.empty() && odor.back() && odor.size() < sensors.path(i).points.size()) {
+        sensors.stop(i);
+      }
+    }
     for (auto& s : surges) {
       if (s.over) continue;
       const auto& odor = sensors.odor(s.sensor);
@@ -285,9 +305,10 @@ TrialStats measure_trial(const Scenario& scenario, const PlumeStatsOptions& opti
       const double upwind =
           measured_upwind(scenario, sensors.environment(), {p.x, p.y, s.heading}, rng);
       const int curl = guess_plume_side(s.heading, upwind, rng);
-      spirals.push_back(sensors.follow(
-          spiral_path({p.x, p.y, upwind}, curl, spiral, scenario.robot, z, dt, options.turns)));
-      t.spirals.push_back({p.x});
+      bool wall = false;
+      spirals.push_back(sensors.follow(spiral_path({p.x, p.y, upwind}, curl, spiral, scenario.robot,
+                                                   z, dt, options.turns, &scenario.arena, &wall)));
+      t.spirals.push_back({p.x, false, wall});
     }
     sensors.advance();
   }
@@ -383,8 +404,12 @@ PlumeStats plume_stats(const Scenario& scenario, const PlumeStatsOptions& option
     for (const auto& s : t.spirals) {
       ++sp.lost;
       sp.loss_x.push_back(s.loss_x);
-      if (!s.detected) continue;
-      ++sp.within_turns;
+      if (!s.detected) {
+        sp.walls += s.wall;
+        sp.out_of_turns += !s.wall;
+        continue;
+      }
+      ++sp.reacquired;
       sp.within_one_turn += s.turns <= 1.0;
       sp.distances.push_back(s.arc);
       sp.turns_to_odor.push_back(s.turns);

@@ -17,6 +17,7 @@
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/probe.hpp"
 #include "plumetrace/sim/trace.hpp"
 
@@ -241,6 +242,22 @@ json detection_map_json(const Scenario& scenario, std::uint64_t seed) {
   return {{"x", grid.x}, {"y", grid.y}, {"fraction", detection_map(scenario, grid, options)}};
 }
 
+// the plume's own statistics (docs/plume-statistics.md) over kPlumeStatsTrials plumes, the
+// plumes of the runs' first trials: what the report compares with the paper's sentences about
+// the plume; of the gap lengths only the centreline's are kept (the report draws them)
+json plume_stats_summary(const Scenario& scenario, std::uint64_t seed, int threads) {
+  PlumeStatsOptions options;
+  options.seed = seed;
+  options.trials = kPlumeStatsTrials;
+  options.threads = std::max(1, threads);
+  json j = detail::plume_stats_json(plume_stats(scenario, options));
+  for (std::size_t i = 0; i < j["along"].size(); ++i) {
+    if (j["along"][i]["offset"] != 0.0) j["along"][i].erase("lengths");
+  }
+  for (auto& c : j["across"]) c.erase("lengths");
+  return j;
+}
+
 json sweep_definition_json(const SweepDef& def) {
   json axes = json::array();
   for (const auto& ax : def.axes) {
@@ -333,6 +350,7 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
     const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
     if (!maps.count(key)) maps[key] = detection_map_json(sc, a->def.seed);
     doc["detection_map"] = maps[key];
+    doc["plume_stats"] = plume_stats_summary(sc, a->def.seed, info.threads);
     doc["success_radius"] = sc.supervisor.success_radius;
     // the value every compared key takes under this reading, preset or built-in default
     json values = json::object();

@@ -27,9 +27,12 @@ SensorPath straight_path(Vec2 from, double heading, double length, double z, dou
 /// The surge-spiral controller's Archimedes spiral (agent/controllers/surge_spiral.hpp) as the
 /// robot drives it from `start`, curling counter-clockwise for curl = +1 (clockwise for -1):
 /// entered at `params.start_radius`, the centre slowed on curves as the robot's wheels slow it
-/// (step_robot), one point per step of `dt`, for `turns` turns of the spiral angle.
+/// (step_robot), one point per step of `dt`, for `turns` turns of the spiral angle; with
+/// `arena`, it ends before the robot's body would touch a wall, where a run would end; `wall`
+/// (when given) says whether it did.
 SensorPath spiral_path(const Pose& start, int curl, const SurgeSpiralParams& params,
-                       const RobotParams& robot, double z, double dt, double turns);
+                       const RobotParams& robot, double z, double dt, double turns,
+                       const ArenaParams* arena = nullptr, bool* wall = nullptr);
 
 /// The turns of the spiral angle done after `arc` (m) of a spiral_path with `params`.
 double spiral_turns(const SurgeSpiralParams& params, double arc);
@@ -156,13 +159,15 @@ struct ReleaseStats {
 
 /// Whether "a spiral of increasing radius will always reacquire the plume": virtual surges from
 /// the robot's start at a measured upwind heading, and the surge-spiral's spiral from where each
-/// loses the plume.
+/// loses the plume, followed until it detects odor, meets a wall or has done its turns.
 struct SpiralStats {
   int surges = 0;                     ///< virtual surges
-  int lost = 0;                       ///< surges that lost the plume before the source's x
+  int lost = 0;                       ///< surges that lost the plume (each starts a spiral)
   std::vector<double> loss_x;         ///< x of each loss (m), in trial and surge order
   int within_one_turn = 0;            ///< spirals that detected odor within one turn
-  int within_turns = 0;               ///< spirals that detected odor within the turns followed
+  int reacquired = 0;                 ///< spirals that detected odor at all
+  int walls = 0;                      ///< spirals that met a wall without odor
+  int out_of_turns = 0;               ///< spirals that did all their turns without odor
   std::vector<double> distances;      ///< path length to the detection, per detecting spiral (m)
   double distance_median = NAN;       ///< median of distances (m)
   std::vector<double> turns_to_odor;  ///< turns to the detection, per detecting spiral
@@ -184,8 +189,8 @@ struct PlumeStatsOptions {
   std::vector<double> across{2.0, 8.0, 14.0};
   /// Virtual surges per trial, 0 to 1000.
   int surges = 8;
-  /// Turns of each spiral followed at most, > 0 and at most 100.
-  double turns = 3.0;
+  /// Turns of each spiral followed at most (it ends earlier at a wall), > 0 and at most 100.
+  double turns = 10.0;
 };
 
 /// A plume's statistics (docs/plume-statistics.md).

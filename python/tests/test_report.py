@@ -169,7 +169,7 @@ def make_summary():
             "detection_map": {"x": xs, "y": ys, "fraction": fraction},
             "success_radius": 0.185})
         readings[-1]["plume_stats"] = (
-            _plume_stats([0.0034, 0.01, 0.02, 0.05, 0.12], in_odor=0) if main
+            _plume_stats([0.003 * (i + 1) for i in range(40)], in_odor=0) if main
             else _plume_stats([], lost=5, reacquired=4))
         if name == "default":
             # the built-in value of a key the other reading sets; "plume.preset" left out to
@@ -558,7 +558,7 @@ def test_plume_section_says_which_readings_plumes_contradict_which_sentence(buil
     section = text[text.index("## The plume against the paper's words"):text.index('id="sets"')]
     # the default plume: gaps all shorter than the sets' smallest d_lost, no odor at release
     assert section.splitlines()[0].endswith("the default reading's plume contradicts 2 of 4 "
-                                            "sentences tested")
+                                            "sentences")
     assert ("\u201cfiltered through d_lost\u201d is contradicted by the plume of default and "
             "plugin-published") in section
     assert "\u201creleased in the odor\u201d is contradicted by the plume of default;" in section
@@ -572,14 +572,17 @@ def test_plume_section_says_which_readings_plumes_contradict_which_sentence(buil
 def test_plume_verdicts_follow_the_rules_of_the_plume_statistics_page():
     v = report_sections.plume_verdicts
     smallest = 0.1535
-    # rule 2: the longest gap against the smallest d_lost of the sets, at the boundary
-    assert v(_plume_stats([0.01, 0.1535]), smallest)["d_lost"][0] == "consistent"
-    assert v(_plume_stats([0.01, 0.1534]), smallest)["d_lost"][0] == "contradicted"
-    # rule 1: no gap along the centreline is a steady tube, and filters nothing
+    # rules 1 and 2 count per run (4 traverses): 12 gaps lie above one a run, 4 straddle it,
+    # none lies below
+    assert v(_plume_stats([0.01] * 12), smallest)["intermittent"][0] == "consistent"
+    assert v(_plume_stats([0.01] * 4), smallest)["intermittent"][0] == "unclear"
     steady = v(_plume_stats([]), smallest)
     assert steady["intermittent"][0] == "contradicted"
     assert steady["d_lost"][0] == "contradicted"
-    assert v(_plume_stats([0.01]), smallest)["intermittent"][0] == "consistent"
+    # rule 2 counts the gaps at least the sets' smallest d_lost, at the boundary
+    assert v(_plume_stats([0.1535] * 12), smallest)["d_lost"][0] == "consistent"
+    below = v(_plume_stats([0.1534] * 12), smallest)["d_lost"]
+    assert below[0] == "contradicted" and "0.00 [0.00, 0.92] per run" in below[1]
     # rule 3: one run without odor at release contradicts "in each run"
     assert v(_plume_stats([0.2], in_odor=3), smallest)["released"][0] == "contradicted"
     assert v(_plume_stats([0.2], in_odor=4), smallest)["released"][0] == "consistent"
@@ -589,6 +592,17 @@ def test_plume_verdicts_follow_the_rules_of_the_plume_statistics_page():
     assert failed[0] == "contradicted" and "1 met a wall" in failed[1]
     assert v(_plume_stats([0.2], lost=0, reacquired=0), smallest)["spiral"][0] == "not tested"
     assert report_sections.smallest_d_lost(make_summary()) == 0.1535
+
+
+def test_poisson_interval_is_close_to_the_exact_one():
+    # exact (Garwood) 95% intervals: k = 0: [0, 3.689]; k = 1: [0.0253, 5.572];
+    # k = 10: [4.795, 18.39]; k = 100: [81.37, 121.6]
+    assert data.poisson_interval(0, 1) == (0.0, pytest.approx(3.689, abs=1e-3))
+    for k, lo, hi in ((10, 4.795, 18.39), (100, 81.37, 121.6)):
+        got = data.poisson_interval(k, 2.0)
+        assert got[0] == pytest.approx(lo / 2, rel=0.01)
+        assert got[1] == pytest.approx(hi / 2, rel=0.01)
+    assert data.poisson_interval(1, 1)[1] == pytest.approx(5.572, rel=0.01)
 
 
 def test_summary_with_bad_plume_statistics_names_the_path(tmp_path):

@@ -12,7 +12,8 @@ from plumetrace.report.data import (DASH, SENSITIVITY_NAME, Point, SweepSet, _ce
                                     _elapsed_text, _fixed_points, _held, _int, _is_number, _num,
                                     _readings, _sensitivity_grid, _verdict_counts, fmt_count,
                                     fmt_duration, fmt_median, fmt_oh, fmt_outcomes, fmt_overhead,
-                                    fmt_pct, fmt_rate, fmt_raw_int, fmt_value, verdict_style)
+                                    fmt_pct, fmt_rate, fmt_raw_int, fmt_value, poisson_interval,
+                                    verdict_style)
 from plumetrace.report.figures import (claims_matrix_figure, failures_figure,
                                        plume_gaps_figure, readings_map_figure,
                                        readings_success_figure, set_figure, sensitivity_figure,
@@ -341,10 +342,15 @@ PLUME_SENTENCES = (
     ("spiral", "4.2", "With the simple plume used in this setup, a spiral of increasing radius "
      "will always reacquire the plume.", "a spiral will always reacquire the plume"),
 )
-CONSISTENT, CONTRADICTED, NOT_TESTED = "consistent", "contradicted", "not tested"
+CONSISTENT, CONTRADICTED, UNCLEAR, NOT_TESTED = ("consistent", "contradicted", "unclear",
+                                                 "not tested")
 # how each verdict is drawn: the claims' styles (consistent as holds, contradicted as does not
-# hold, not tested as unclear)
-PLUME_STYLE = {CONSISTENT: "holds", CONTRADICTED: "does not hold", NOT_TESTED: "unclear"}
+# hold, unclear and not tested as unclear)
+PLUME_STYLE = {CONSISTENT: "holds", CONTRADICTED: "does not hold", UNCLEAR: "unclear",
+               NOT_TESTED: "unclear"}
+# gaps a robot meets per run along the centreline, at or above which the plume is intermittent
+# and d_lost filters it (docs/plume-statistics.md)
+GAPS_PER_TRAVERSE = 1.0
 
 
 def smallest_d_lost(summary: dict) -> Optional[float]:
@@ -362,35 +368,36 @@ def _of(k: Optional[int], n: Optional[int]) -> str:
     return DASH if k is None or not n else f"{k}/{n}"
 
 
+def per_traverse(k: int, traverses: int) -> tuple:
+    """(verdict, "r [lo, hi] per run") for k events met on `traverses` runs' ways to the
+    source, against GAPS_PER_TRAVERSE (docs/plume-statistics.md)."""
+    lo, hi = poisson_interval(k, traverses)
+    verdict = (CONSISTENT if lo > GAPS_PER_TRAVERSE else
+               CONTRADICTED if hi < GAPS_PER_TRAVERSE else UNCLEAR)
+    return verdict, f"{k / traverses:.2f} [{lo:.2f}, {hi:.2f}] per run"
+
+
 def plume_verdicts(ps: dict, smallest: Optional[float]) -> dict:
     """Sentence key -> (verdict, what the statistic shows) for one reading's plume statistics,
     by the rules of docs/plume-statistics.md."""
     out = {}
-    trials = _int(ps.get("trials")) or 0
     d_lost = _num(ps.get("d_lost"))
     line = _centreline(ps)
-    if line is None or not _int(line.get("samples")):
-        out["intermittent"] = out["d_lost"] = (NOT_TESTED, "no centreline measured")
+    traverses = _int((line or {}).get("paths")) or 0
+    lengths = [x for x in (line or {}).get("lengths") or [] if _is_number(x)]
+    if not traverses or len(lengths) != (_int(line.get("gaps")) or 0):
+        out["intermittent"] = out["d_lost"] = (NOT_TESTED, "no centreline gaps measured")
     else:
-        gaps = _int(line.get("gaps")) or 0
-        odor = _num(line.get("detected_fraction"))
-        if gaps == 0:
-            out["intermittent"] = (CONTRADICTED, f"no gap along the centreline in "
-                                   f"{counted(trials, trials, 'plume', 'plumes')} (odor at "
-                                   f"{fmt_pct(odor)} of the samples)")
+        verdict, rate = per_traverse(len(lengths), traverses)
+        out["intermittent"] = (verdict, f"gaps along the centreline: {rate} (odor at "
+                               f"{fmt_pct(_num(line.get('detected_fraction')))} of the samples)")
+        if smallest is None:
+            out["d_lost"] = (NOT_TESTED, "no set varies d_lost")
         else:
-            out["intermittent"] = (CONSISTENT, f"{gaps} gaps along the centreline, odor at "
-                                   f"{fmt_pct(odor)} of the samples")
-        longest = _num(line.get("longest"))
-        longer = _int(line.get("longer_than_d_lost")) or 0
-        beside = (f"; {longer} of {gaps} at least d_lost ({_m(d_lost)})" if gaps else "")
-        if longest is None:
-            out["d_lost"] = (CONTRADICTED, "no gap along the centreline for d_lost to filter")
-        elif smallest is not None and longest < smallest:
-            out["d_lost"] = (CONTRADICTED, f"longest gap {_m(longest)}, shorter than the "
-                             f"smallest d_lost of the sets ({_m(smallest)}){beside}")
-        else:
-            out["d_lost"] = (CONSISTENT, f"longest gap {_m(longest)}{beside}")
+            verdict, rate = per_traverse(sum(x >= smallest for x in lengths), traverses)
+            _, fixed = per_traverse(sum(x >= d_lost for x in lengths), traverses)
+            out["d_lost"] = (verdict, f"gaps at least {_m(smallest)}: {rate}; at least d_lost "
+                             f"({_m(d_lost)}): {fixed}; longest {_m(_num(line.get('longest')))}")
     rel = ps.get("release") or {}
     n, k, near = _int(rel.get("trials")), _int(rel.get("in_odor")), _int(rel.get("within_d_lost"))
     if not n:
@@ -421,10 +428,9 @@ def _plume_section(out_dir: Path, fig_dir: Path, summary: dict, written: list) -
     smallest = smallest_d_lost(summary)
     verdicts = [plume_verdicts(r["plume_stats"], smallest) for r in readings]
     main, ps0 = readings[0], readings[0]["plume_stats"]
-    tested = [key for key, *_ in PLUME_SENTENCES if verdicts[0][key][0] != NOT_TESTED]
-    against = [key for key in tested if verdicts[0][key][0] == CONTRADICTED]
+    against = [key for key, *_ in PLUME_SENTENCES if verdicts[0][key][0] == CONTRADICTED]
     title += (f": the {main.get('name')} reading's plume contradicts "
-              f"{counted(len(against), len(tested), 'sentence', 'sentences')} tested")
+              f"{counted(len(against), len(PLUME_SENTENCES), 'sentence', 'sentences')}")
     trials = _int(ps0.get("trials"))
     blocks = [Para([
         "The paper describes its plume in four sentences. Each is tested here by what a binary "
@@ -458,7 +464,9 @@ def _plume_section(out_dir: Path, fig_dir: Path, summary: dict, written: list) -
         rows.append(row)
     blocks.append(Table(header=["reading"] + [f"{i}. {short}" for i, (*_, short)
                                               in enumerate(PLUME_SENTENCES, 1)], rows=rows,
-                        caption="\u2713 consistent, \u2717 contradicted, ? not tested."))
+                        caption="\u2713 consistent, \u2717 contradicted, ? unclear or not "
+                                "tested; rates per run are per traverse of the centreline from "
+                                "the start to the source, with 95% Poisson intervals."))
     rows = []
     for r in readings:
         ps = r["plume_stats"]

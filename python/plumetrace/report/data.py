@@ -465,6 +465,18 @@ def _readings(summary: dict) -> list:
     return readings
 
 
+def poisson_interval(k: int, exposure: float) -> tuple:
+    """The 95% interval of a Poisson rate from `k` events over `exposure` units: Byar's
+    approximation of the exact (Garwood) interval, within 1% of it from k = 2 on, with the exact
+    upper end ln(40) at k = 0 and lower end 0."""
+    z = 1.959963984540054
+    if k == 0:
+        return 0.0, math.log(40.0) / exposure
+    lo = k * (1.0 - 1.0 / (9.0 * k) - z / (3.0 * math.sqrt(k))) ** 3
+    hi = (k + 1) * (1.0 - 1.0 / (9.0 * (k + 1)) + z / (3.0 * math.sqrt(k + 1))) ** 3
+    return lo / exposure, hi / exposure
+
+
 def _centreline(ps: Optional[dict]) -> Optional[dict]:
     """The upwind line at offset 0 of a reading's plume statistics, or None."""
     for line in (ps or {}).get("along") or []:

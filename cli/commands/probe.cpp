@@ -145,7 +145,7 @@ CLI::App* ProbeCommand::add(CLI::App& app) {
                       "--plume-stats: plumes measured, trial k the plume of a run's trial k "
                       "(default " +
                           std::to_string(d.trials) + ")")
-          ->check(whole_number(1, 10000)),
+          ->check(whole_number(1, 1000)),
       sub->add_option("--threads", stats.threads, "--plume-stats: worker threads (default 1)")
           ->check(whole_number(1, 1024)),
       sub->add_option("--offsets", offsets,

@@ -334,7 +334,7 @@ TrialStats measure_trial(const Scenario& scenario, const PlumeStatsOptions& opti
 }
 
 void check_options(const Scenario& scenario, const PlumeStatsOptions& o) {
-  if (o.trials < 1 || o.trials > 10000) throw ConfigError("--trials: must be 1 to 10000");
+  if (o.trials < 1 || o.trials > 1000) throw ConfigError("--trials: must be 1 to 1000");
   if (o.threads < 1 || o.threads > 1024) throw ConfigError("--threads: must be 1 to 1024");
   if (o.surges < 0 || o.surges > 1000) throw ConfigError("--surges: must be 0 to 1000");
   if (!(o.turns > 0.0 && o.turns <= 100.0)) {

@@ -439,8 +439,8 @@ def _plume_section(out_dir: Path, fig_dir: Path, summary: dict, written: list) -
         "it, at the robot's start, and along the surge-spiral's own spiral from where a surge "
         f"loses the plume, in {counted(trials or 0, trials or 0, 'plume', 'plumes')} of each "
         "reading (the plumes of the runs' first trials). The statistics, and the rules by which "
-        "a plume contradicts a sentence (fixed before they were run on the readings), are "
-        "defined in ", _doc_link(out_dir, "docs/plume-statistics.md"),
+        "a plume contradicts a sentence, are defined in ",
+        _doc_link(out_dir, "docs/plume-statistics.md"),
         "; a reading whose plume contradicts a sentence loses that sentence's support for its "
         "values (", _doc_link(out_dir, "docs/fidelity.md"), ")."])]
     blocks.append(Bullets([[("b", f"{i}."), f" \u201c{quote}\u201d (section {sec})"]

@@ -179,7 +179,8 @@ struct PlumeStatsOptions {
   double warmup = NAN;
   /// Master seed; trial k uses the plume of (seed, k), the plume a run's trial k meets.
   std::uint64_t seed = 1;
-  /// Trials (plumes), 1 to 10000.
+  /// Trials (plumes), 1 to 1000. why: every trial's gaps are kept until they are pooled (some 30 kB
+  /// each for the default plume), and a thousand plumes take minutes.
   int trials = 20;
   /// Worker threads (results do not depend on them).
   int threads = 1;

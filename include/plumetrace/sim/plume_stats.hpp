@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "plumetrace/agent/controllers/surge_spiral.hpp"
@@ -71,7 +72,8 @@ class VirtualSensors {
   long steps() const { return now_; }
   /// The environment now (the wind a sensor at a state switch would measure).
   const Environment& environment() const { return env_; }
-  /// The odor flags read so far by sensor `i` (1: the concentration reached odor.threshold).
+  /// The odor flags read so far by sensor `i` (1: the concentration reached odor.threshold); the
+  /// reference stays valid while sensors are added.
   const std::vector<std::uint8_t>& odor(std::size_t i) const { return sensors_.at(i).odor; }
   /// The path of sensor `i`.
   const SensorPath& path(std::size_t i) const { return sensors_.at(i).path; }
@@ -86,7 +88,8 @@ class VirtualSensors {
   Environment env_;
   long now_ = 0;
   bool read_ = false;  // the current step has been read
-  std::vector<Sensor> sensors_;
+  // why: a deque, so that a sensor's path and flags stay where they are when another starts
+  std::deque<Sensor> sensors_;
 };
 
 /// The odor flags of sensors on `paths`, all started at release in the plume of (seed, trial).

@@ -136,6 +136,11 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set sim.dt=1e-300", "at most 1e7 steps"},
       {"probe --points 1,0,nan", "--points"},
       {"probe --points 1,0,0 --duration 0.1 --interval 1", "--duration"},
+      {"probe", "--points: required"},
+      {"probe --plume-stats --points 1,0,0", "--points excludes --plume-stats"},
+      {"probe --trials 3", "--trials requires --plume-stats"},
+      {"probe --plume-stats --offsets 0,x", "--offsets: '0,x'"},
+      {"probe --plume-stats --turns 200", "--turns"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);
@@ -288,6 +293,31 @@ TEST(Cli, ProbeReportsEveryPoint) {
   // on the axis the default plume is intermittent; 1.5 m to the side it never reaches
   EXPECT_GT(j["points"][0]["detect_fraction"].get<double>(), 0.05);
   EXPECT_EQ(j["points"][1]["detect_fraction"].get<double>(), 0.0);
+}
+
+TEST(Cli, PlumeStatsReportEachLineTheReleaseAndTheSpirals) {
+  const Output o =
+      cli("probe --plume-stats --trials 2 --surges 2 --offsets \"0;0.3\" --across 2 --threads 2 "
+          "--set robot.start_offset_x=3 --set sim.warmup=5 --json");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const json j = json::parse(o.out);
+  EXPECT_EQ(j["trials"], 2);
+  EXPECT_EQ(j["d_lost"], 0.614);
+  ASSERT_EQ(j["along"].size(), 2u);
+  EXPECT_EQ(j["along"][1]["offset"], 0.3);
+  EXPECT_EQ(j["along"][0]["paths"], 2);
+  // 0.3 m beside the axis the default plume never reaches
+  EXPECT_EQ(j["along"][1]["detections"], 0);
+  EXPECT_GT(j["along"][0]["detections"].get<long>(), 0);
+  ASSERT_EQ(j["across"].size(), 1u);
+  EXPECT_EQ(j["across"][0]["distance"], 2.0);
+  EXPECT_EQ(j["release"]["trials"], 2);
+  EXPECT_EQ(j["spirals"]["surges"], 4);
+  const Output text =
+      cli("probe --plume-stats --trials 1 --surges 1 --offsets 0 --across 2 "
+          "--set robot.start_offset_x=3 --set sim.warmup=5");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("released in odor"), std::string::npos) << text.out;
 }
 
 TEST(Cli, HumanOutputNamesTheOutcome) {

@@ -8,6 +8,7 @@
 #include "errors.hpp"
 #include "options.hpp"
 #include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/probe.hpp"
 #include "plumetrace/view/viewer.hpp"
 
@@ -68,6 +69,10 @@ struct ProbeCommand final : Command {
   bool json = false;
   std::string centreline;
   std::string map;
+  bool plume_stats = false;
+  PlumeStatsOptions stats;
+  std::string offsets;
+  std::string across;
 
   CLI::App* add(CLI::App& app) override;
   int run() override;

@@ -106,6 +106,33 @@ def _failed_trajectory(algorithm, set_name):
     return t
 
 
+def _plume_stats(lengths, in_odor=4, lost=6, reacquired=6):
+    """A reading's plume statistics (docs/plume-statistics.md) with these centreline gaps."""
+    lengths = sorted(lengths)
+
+    def line(key, value, gaps):
+        n = len(gaps)
+        return {key: value, "paths": 4, "paths_with_odor": 4, "samples": 17100,
+                "detections": 17100 - 20 * n, "detected_fraction": 1 - 20 * n / 17100,
+                "gaps": n, "median": gaps[n // 2] if n else None,
+                "p90": gaps[int(0.9 * (n - 1))] if n else None,
+                "longest": gaps[-1] if n else None,
+                "longer_than_d_lost": sum(g >= 0.614 for g in gaps),
+                "fraction_longer": sum(g >= 0.614 for g in gaps) / n if n else None,
+                "lengths": gaps}
+    along = [dict(line("offset", 0.0, lengths), leading_median=0.08),
+             dict(line("offset", 0.1, lengths[:3]), leading_median=0.1)]
+    del along[1]["lengths"]
+    across = [dict(line("distance", 2.0, [0.01, 0.02]), band_median=0.18, band_max=0.23,
+                   band_widths=[0.18, 0.17, 0.23, 0.2])]
+    return {"trials": 4, "seed": 20080101, "d_lost": 0.614, "speed": 0.106, "turns": 10,
+            "along": along, "across": across,
+            "release": {"trials": 4, "in_odor": in_odor, "within_d_lost": 4},
+            "spirals": {"surges": 8, "lost": lost, "within_one_turn": reacquired,
+                        "reacquired": reacquired, "walls": lost - reacquired, "out_of_turns": 0,
+                        "distance_median": 0.13, "distances": [0.13] * reacquired}}
+
+
 def make_summary():
     """A synthetic summary.json following the schema in docs/report.md."""
     rng = random.Random(1)
@@ -141,6 +168,9 @@ def make_summary():
                       for a, s in (("casting", "A"), ("surge-spiral", "D"), ("surge-cast", "G"))],
             "detection_map": {"x": xs, "y": ys, "fraction": fraction},
             "success_radius": 0.185})
+        readings[-1]["plume_stats"] = (
+            _plume_stats([0.003 * (i + 1) for i in range(40)], in_odor=0) if main
+            else _plume_stats([], lost=5, reacquired=4))
         if name == "default":
             # the built-in value of a key the other reading sets; "plume.preset" left out to
             # show a summary without it
@@ -196,7 +226,7 @@ def built(tmp_path_factory):
 def expected_figures(with_sensitivity=True):
     names = [f"set_{s[0]}.png" for s in SETS] + ["trajectories.png", "sensitivity.png",
                                                   "failures.png", "readings_success.png",
-                                                  "readings_map.png"]
+                                                  "readings_map.png", "plume_gaps.png"]
     return names + (["sensitivity_claims.png"] if with_sensitivity else [])
 
 
@@ -520,6 +550,67 @@ def test_readings_section_compares_settings_rates_and_maps(built):
     assert "0.75" in row and "(default)" not in row
     assert section.count("/20 = ") == 3 * len(READINGS)
     assert "Wilson 95%" in section and "bootstrap 95%" in section
+
+
+def test_plume_section_says_which_readings_plumes_contradict_which_sentence(built):
+    out, _ = built
+    text = (out / "report.md").read_text(encoding="utf-8")
+    section = text[text.index("## The plume against the paper's words"):text.index('id="sets"')]
+    # the default plume: gaps all shorter than the sets' smallest d_lost, no odor at release
+    assert section.splitlines()[0].endswith("the default reading's plume contradicts 2 of 4 "
+                                            "sentences")
+    assert ("\u201cfiltered through d_lost\u201d is contradicted by the plume of default and "
+            "plugin-published") in section
+    assert "\u201creleased in the odor\u201d is contradicted by the plume of default;" in section
+    assert ("\u201ca spiral will always reacquire the plume\u201d is contradicted by the plume "
+            "of plugin-published") in section
+    assert "figures/plume_gaps.png" in section
+    for sentence in report_sections.PLUME_SENTENCES:
+        assert sentence[2] in section
+
+
+def test_plume_verdicts_follow_the_rules_of_the_plume_statistics_page():
+    v = report_sections.plume_verdicts
+    smallest = 0.1535
+    # rules 1 and 2 count per run (4 traverses): 12 gaps lie above one a run, 4 straddle it,
+    # none lies below
+    assert v(_plume_stats([0.01] * 12), smallest)["intermittent"][0] == "consistent"
+    assert v(_plume_stats([0.01] * 4), smallest)["intermittent"][0] == "unclear"
+    steady = v(_plume_stats([]), smallest)
+    assert steady["intermittent"][0] == "contradicted"
+    assert steady["d_lost"][0] == "contradicted"
+    # rule 2 counts the gaps at least the sets' smallest d_lost, at the boundary
+    assert v(_plume_stats([0.1535] * 12), smallest)["d_lost"][0] == "consistent"
+    below = v(_plume_stats([0.1534] * 12), smallest)["d_lost"]
+    assert below[0] == "contradicted" and "0.00 [0.00, 0.92] per run" in below[1]
+    # rule 3: one run without odor at release contradicts "in each run"
+    assert v(_plume_stats([0.2], in_odor=3), smallest)["released"][0] == "contradicted"
+    assert v(_plume_stats([0.2], in_odor=4), smallest)["released"][0] == "consistent"
+    # rule 4: every spiral finds odor, one does not, or no surge lost the plume
+    assert v(_plume_stats([0.2]), smallest)["spiral"][0] == "consistent"
+    failed = v(_plume_stats([0.2], lost=6, reacquired=5), smallest)["spiral"]
+    assert failed[0] == "contradicted" and "1 met a wall" in failed[1]
+    assert v(_plume_stats([0.2], lost=0, reacquired=0), smallest)["spiral"][0] == "not tested"
+    assert report_sections.smallest_d_lost(make_summary()) == 0.1535
+
+
+def test_poisson_interval_is_close_to_the_exact_one():
+    # exact (Garwood) 95% intervals: k = 0: [0, 3.689]; k = 1: [0.0253, 5.572];
+    # k = 10: [4.795, 18.39]; k = 100: [81.37, 121.6]
+    assert data.poisson_interval(0, 1) == (0.0, pytest.approx(3.689, abs=1e-3))
+    for k, lo, hi in ((10, 4.795, 18.39), (100, 81.37, 121.6)):
+        got = data.poisson_interval(k, 2.0)
+        assert got[0] == pytest.approx(lo / 2, rel=0.01)
+        assert got[1] == pytest.approx(hi / 2, rel=0.01)
+    assert data.poisson_interval(1, 1)[1] == pytest.approx(5.572, rel=0.01)
+
+
+def test_summary_with_bad_plume_statistics_names_the_path(tmp_path):
+    summary = make_summary()
+    summary["readings"][0]["plume_stats"]["along"][0]["longest"] = "x"
+    write_json(tmp_path / "summary.json", summary)
+    with pytest.raises(report.ReportError, match=r"readings\[0\]\.plume_stats\.along\[0\]\.longest"):
+        report.build_report(tmp_path)
 
 
 def test_summary_with_a_bad_reading_names_its_path(tmp_path):

@@ -33,6 +33,86 @@ json result_json(const RunResult& r, const RunInfo& info) {
   return out;
 }
 
+namespace {
+
+// lengths (m) to 0.1 mm, enough for a figure and far below a step of the robot
+json lengths_json(const std::vector<double>& v) {
+  json out = json::array();
+  for (const double x : v) out.push_back(std::round(x * 1e4) / 1e4);
+  return out;
+}
+
+// a pooled gap analysis (docs/plume-statistics.md)
+json gap_stats_json(const GapStats& g) {
+  return {{"paths", g.paths},
+          {"paths_with_odor", g.paths_with_odor},
+          {"samples", g.samples},
+          {"detections", g.detections},
+          {"detected_fraction",
+           g.samples > 0 ? json(static_cast<double>(g.detections) / static_cast<double>(g.samples))
+                         : json(nullptr)},
+          {"gaps", g.gaps.size()},
+          {"median", number_or_null(g.median)},
+          {"p90", number_or_null(g.p90)},
+          {"longest", number_or_null(g.longest)},
+          {"longer_than_d_lost", g.longer_than_d_lost},
+          {"fraction_longer", number_or_null(g.fraction_longer)},
+          {"lengths", lengths_json(g.gaps)}};
+}
+
+// count / of, or null when of is 0
+json share(long count, long of) {
+  return of > 0 ? json(static_cast<double>(count) / static_cast<double>(of)) : json(nullptr);
+}
+
+}  // namespace
+
+json plume_stats_json(const PlumeStats& st) {
+  json along = json::array(), across = json::array();
+  for (const auto& a : st.along) {
+    json j = gap_stats_json(a.gaps);
+    j["offset"] = a.offset;
+    j["leading_median"] = number_or_null(a.leading_median);
+    along.push_back(j);
+  }
+  for (const auto& c : st.across) {
+    json j = gap_stats_json(c.gaps);
+    j["distance"] = c.distance;
+    j["band_median"] = number_or_null(c.band_median);
+    j["band_max"] = number_or_null(c.band_max);
+    j["band_widths"] = lengths_json(c.band_widths);
+    across.push_back(j);
+  }
+  const auto& r = st.release;
+  const auto& s = st.spirals;
+  return {{"trials", st.trials},
+          {"seed", st.seed},
+          {"d_lost", st.d_lost},
+          {"speed", st.speed},
+          {"turns", st.turns},
+          {"along", along},
+          {"across", across},
+          {"release",
+           {{"trials", r.trials},
+            {"in_odor", r.in_odor},
+            {"within_d_lost", r.within_d_lost},
+            {"fraction_in_odor", share(r.in_odor, r.trials)},
+            {"fraction_within_d_lost", share(r.within_d_lost, r.trials)}}},
+          {"spirals",
+           {{"surges", s.surges},
+            {"lost", s.lost},
+            {"within_one_turn", s.within_one_turn},
+            {"reacquired", s.reacquired},
+            {"walls", s.walls},
+            {"out_of_turns", s.out_of_turns},
+            {"fraction_one_turn", share(s.within_one_turn, s.lost)},
+            {"fraction_reacquired", share(s.reacquired, s.lost)},
+            {"distance_median", number_or_null(s.distance_median)},
+            {"distances", lengths_json(s.distances)},
+            {"turns_to_odor", lengths_json(s.turns_to_odor)},
+            {"loss_x", lengths_json(s.loss_x)}}}};
+}
+
 json stats_json(const PointStats& p) {
   return {{"runs", p.runs},
           {"successes", p.successes},

@@ -57,6 +57,10 @@ std::string probe_to_json(const ProbeReport& report) {
   return json{{"points", points_json(report.points)}, {"centrelines", centrelines}}.dump();
 }
 
+std::string plume_stats_to_json(const PlumeStats& stats) {
+  return detail::plume_stats_json(stats).dump();
+}
+
 std::string detection_map_to_json(const MapGrid& grid,
                                   const std::vector<std::vector<double>>& fraction) {
   return json{{"x", grid.x}, {"y", grid.y}, {"z", grid.z}, {"fraction", fraction}}.dump() + "\n";

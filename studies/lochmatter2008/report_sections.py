@@ -8,14 +8,16 @@ import math
 from pathlib import Path
 from typing import Any, Optional
 
-from plumetrace.report.data import (DASH, SENSITIVITY_NAME, Point, SweepSet, _elapsed_text,
-                                    _fixed_points, _held, _int, _is_number, _num, _readings,
-                                    _sensitivity_grid, _verdict_counts, fmt_count, fmt_duration,
-                                    fmt_median, fmt_oh, fmt_outcomes, fmt_overhead, fmt_pct,
-                                    fmt_rate, fmt_raw_int, fmt_value, verdict_style)
+from plumetrace.report.data import (DASH, SENSITIVITY_NAME, Point, SweepSet, _centreline,
+                                    _elapsed_text, _fixed_points, _held, _int, _is_number, _num,
+                                    _readings, _sensitivity_grid, _verdict_counts, fmt_count,
+                                    fmt_duration, fmt_median, fmt_oh, fmt_outcomes, fmt_overhead,
+                                    fmt_pct, fmt_rate, fmt_raw_int, fmt_value, poisson_interval,
+                                    verdict_style)
 from plumetrace.report.figures import (claims_matrix_figure, failures_figure,
-                                       readings_map_figure, readings_success_figure, set_figure,
-                                       sensitivity_figure, trajectory_figure)
+                                       plume_gaps_figure, readings_map_figure,
+                                       readings_success_figure, set_figure, sensitivity_figure,
+                                       trajectory_figure)
 from plumetrace.report.page import (Bullets, Cell, Para, Pre, Section, Table, _doc_link, _fig,
                                     report_command)
 from plumetrace.report.wording import counted, share_lead, verb
@@ -66,6 +68,7 @@ def document(out_dir: Path, fig_dir: Path, summary: dict, sens: Optional[dict],
                 _readings_section(out_dir, fig_dir, summary, written)]
     if len(summary.get("axis_readings") or []) > 1:
         sections.append(_axes_section(out_dir, summary))
+    sections.append(_plume_section(out_dir, fig_dir, summary, written))
     sections += _set_sections(out_dir, fig_dir, sets, written)
     sections.append(_trajectory_section(out_dir, fig_dir, summary, written))
     sections.append(_claims_section(out_dir, summary))
@@ -458,6 +461,221 @@ def _axes_section(out_dir: Path, summary: dict) -> Section:
         blocks.append(Table(header=["id", "the paper says"] + [a.get("name") for a in axes],
                             rows=claim_rows))
     return Section("axes", "The axes side by side", blocks)
+
+
+# The paper's sentences about its plume, each tested by a plume statistic: (key, section, the
+# sentence as printed, a short name). The rules: docs/plume-statistics.md, "When a plume
+# contradicts a sentence".
+PLUME_SENTENCES = (
+    ("intermittent", "3.3", "Yet, it generates an intermittent plume which is similar to the "
+     "real plume in the wind tunnel.", "an intermittent plume"),
+    ("d_lost", "3.4", "Since the concentration is anyway thresholded and filtered through "
+     "d_lost by the algorithms in use here, a precise calibration of the odor propagation and "
+     "odor sensor model is not required.", "filtered through d_lost"),
+    ("released", "3.6", "In each run, the robot was released in the odor at a position about "
+     "14.5 m downwind from the target area.", "released in the odor"),
+    ("spiral", "4.2", "With the simple plume used in this setup, a spiral of increasing radius "
+     "will always reacquire the plume.", "a spiral will always reacquire the plume"),
+)
+CONSISTENT, CONTRADICTED, UNCLEAR, NOT_TESTED = ("consistent", "contradicted", "unclear",
+                                                 "not tested")
+# how each verdict is drawn: the claims' styles (consistent as holds, contradicted as does not
+# hold, unclear and not tested as unclear)
+PLUME_STYLE = {CONSISTENT: "holds", CONTRADICTED: "does not hold", UNCLEAR: "unclear",
+               NOT_TESTED: "unclear"}
+# gaps a robot meets per run along the centreline, at or above which the plume is intermittent
+# and d_lost filters it (docs/plume-statistics.md)
+GAPS_PER_TRAVERSE = 1.0
+
+
+def smallest_d_lost(summary: dict) -> Optional[float]:
+    """The smallest d_lost of the sets that vary it (B, E, H: d_lost / 4 = 0.1535 m)."""
+    values = [v for st in summary.get("sets") or [] if str(st.get("key") or "").endswith("d_lost")
+              for v in st.get("values") or [] if _is_number(v)]
+    return min(values) if values else None
+
+
+def _m(v: Optional[float]) -> str:
+    return DASH if v is None else f"{v:.2f} m"
+
+
+def _of(k: Optional[int], n: Optional[int]) -> str:
+    return DASH if k is None or not n else f"{k}/{n}"
+
+
+def per_traverse(k: int, traverses: int) -> tuple:
+    """(verdict, "r [lo, hi] per run") for k events met on `traverses` runs' ways to the
+    source, against GAPS_PER_TRAVERSE (docs/plume-statistics.md)."""
+    lo, hi = poisson_interval(k, traverses)
+    verdict = (CONSISTENT if lo > GAPS_PER_TRAVERSE else
+               CONTRADICTED if hi < GAPS_PER_TRAVERSE else UNCLEAR)
+    return verdict, f"{k / traverses:.2f} [{lo:.2f}, {hi:.2f}] per run"
+
+
+def plume_verdicts(ps: dict, smallest: Optional[float]) -> dict:
+    """Sentence key -> (verdict, what the statistic shows) for one reading's plume statistics,
+    by the rules of docs/plume-statistics.md."""
+    out = {}
+    d_lost = _num(ps.get("d_lost"))
+    line = _centreline(ps)
+    traverses = _int((line or {}).get("paths")) or 0
+    lengths = [x for x in (line or {}).get("lengths") or [] if _is_number(x)]
+    if not traverses or len(lengths) != (_int(line.get("gaps")) or 0):
+        out["intermittent"] = out["d_lost"] = (NOT_TESTED, "no centreline gaps measured")
+    else:
+        verdict, rate = per_traverse(len(lengths), traverses)
+        out["intermittent"] = (verdict, f"gaps along the centreline: {rate} (odor at "
+                               f"{fmt_pct(_num(line.get('detected_fraction')))} of the samples)")
+        if smallest is None:
+            out["d_lost"] = (NOT_TESTED, "no set varies d_lost")
+        else:
+            verdict, rate = per_traverse(sum(x >= smallest for x in lengths), traverses)
+            _, fixed = per_traverse(sum(x >= d_lost for x in lengths), traverses)
+            out["d_lost"] = (verdict, f"gaps at least {_m(smallest)}: {rate}; at least d_lost "
+                             f"({_m(d_lost)}): {fixed}; longest {_m(_num(line.get('longest')))}")
+    rel = ps.get("release") or {}
+    n, k, near = _int(rel.get("trials")), _int(rel.get("in_odor")), _int(rel.get("within_d_lost"))
+    if not n:
+        out["released"] = (NOT_TESTED, "no release measured")
+    else:
+        text = (f"odor at release in {k} of {n} plumes, within d_lost upwind in {near} of {n}")
+        out["released"] = (CONSISTENT if k == n else CONTRADICTED, text)
+    sp = ps.get("spirals") or {}
+    lost, found = _int(sp.get("lost")) or 0, _int(sp.get("reacquired")) or 0
+    one = _int(sp.get("within_one_turn")) or 0
+    if lost == 0:
+        out["spiral"] = (NOT_TESTED, f"none of the {_int(sp.get('surges')) or 0} virtual surges "
+                         "lost the plume")
+    else:
+        text = (f"{found} of {lost} spirals found odor ({one} within one turn)")
+        if found < lost:
+            text += (f"; {_int(sp.get('walls')) or 0} met a wall and "
+                     f"{_int(sp.get('out_of_turns')) or 0} ran out of turns without odor")
+        out["spiral"] = (CONSISTENT if found == lost else CONTRADICTED, text)
+    return out
+
+
+def _plume_section(out_dir: Path, fig_dir: Path, summary: dict, written: list) -> Section:
+    readings = [r for r in _readings(summary) if r.get("plume_stats")]
+    title = "The plume against the paper's words"
+    if not readings:
+        return Section("plume", title, [Para(["This summary has no plume statistics."])])
+    smallest = smallest_d_lost(summary)
+    verdicts = [plume_verdicts(r["plume_stats"], smallest) for r in readings]
+    main, ps0 = readings[0], readings[0]["plume_stats"]
+    against = [key for key, *_ in PLUME_SENTENCES if verdicts[0][key][0] == CONTRADICTED]
+    title += (f": the {main.get('name')} reading's plume contradicts "
+              f"{counted(len(against), len(PLUME_SENTENCES), 'sentence', 'sentences')}")
+    trials = _int(ps0.get("trials"))
+    blocks = [Para([
+        "The paper describes its plume in four sentences. Each is tested here by what a binary "
+        "odor sensor moving at the robot's speed (", fmt_value(_num(ps0.get("speed"))),
+        " m/s) meets while the plume evolves: straight upwind along the plume, crosswind across "
+        "it, at the robot's start, and along the surge-spiral's own spiral from where a surge "
+        f"loses the plume, in {counted(trials or 0, trials or 0, 'plume', 'plumes')} of each "
+        "reading (the plumes of the runs' first trials). The statistics, and the rules by which "
+        "a plume contradicts a sentence, are defined in ",
+        _doc_link(out_dir, "docs/plume-statistics.md"),
+        "; a reading whose plume contradicts a sentence loses that sentence's support for its "
+        "values (", _doc_link(out_dir, "docs/fidelity.md"), ")."])]
+    blocks.append(Bullets([[("b", f"{i}."), f" \u201c{quote}\u201d (section {sec})"]
+                           for i, (_, sec, quote, _) in enumerate(PLUME_SENTENCES, 1)]))
+    plain = []
+    for key, _, _, short in PLUME_SENTENCES:
+        names = [r.get("name") for r, v in zip(readings, verdicts) if v[key][0] == CONTRADICTED]
+        if names:
+            plain.append(f"\u201c{short}\u201d is contradicted by the plume of "
+                         f"{_listed(names)}")
+        else:
+            plain.append(f"no reading's plume contradicts \u201c{short}\u201d")
+    blocks.append(Para([("b", "What the statistics say: "), _capital("; ".join(plain)) + "."]))
+    rows = []
+    for r, v in zip(readings, verdicts):
+        row = [Cell(r.get("name") + (" (main)" if r.get("main") else ""), cls="key")]
+        for key, *_ in PLUME_SENTENCES:
+            verdict, text = v[key]
+            cls, _, symbol = verdict_style(PLUME_STYLE[verdict])
+            row.append(Cell(f"{symbol} {verdict}: {text}", cls=f"cell {cls}", title=verdict))
+        rows.append(row)
+    blocks.append(Table(header=["reading"] + [f"{i}. {short}" for i, (*_, short)
+                                              in enumerate(PLUME_SENTENCES, 1)], rows=rows,
+                        caption="\u2713 consistent, \u2717 contradicted, ? unclear or not "
+                                "tested; rates per run are per traverse of the centreline from "
+                                "the start to the source, with 95% Poisson intervals."))
+    rows = []
+    for r in readings:
+        ps = r["plume_stats"]
+        line = _centreline(ps) or {}
+        gaps = _int(line.get("gaps")) or 0
+        across = "; ".join(f"{fmt_value(_num(c.get('distance')))} m: "
+                           f"{_m(_num(c.get('band_median')))}"
+                           for c in ps.get("across") or [])
+        across_gap = max([g for g in (_num(c.get("longest")) for c in ps.get("across") or [])
+                          if g is not None], default=None)
+        off = "; ".join(f"{fmt_value(_num(a.get('offset')))}: {_m(_num(a.get('longest')))}"
+                        for a in ps.get("along") or [] if _num(a.get("offset")) != 0.0)
+        rows.append([Cell(r.get("name") + (" (main)" if r.get("main") else ""), cls="key"),
+                     Cell(fmt_pct(_num(line.get("detected_fraction"))), num=True),
+                     Cell(str(gaps), num=True),
+                     Cell(_m(_num(line.get("median"))), num=True),
+                     Cell(_m(_num(line.get("p90"))), num=True),
+                     Cell(_m(_num(line.get("longest"))), num=True),
+                     Cell(f"{_int(line.get('longer_than_d_lost')) or 0} of {gaps}", num=True),
+                     Cell(off or DASH), Cell(across or DASH), Cell(_m(across_gap), num=True)])
+    d_lost = _num(ps0.get("d_lost"))
+    blocks.append(Table(
+        header=["reading", "odor along the centreline", "gaps", "median gap", "90th percentile",
+                "longest gap", f"gaps \u2265 d_lost ({_m(d_lost)})",
+                "longest gap at other offsets (m: gap)", "band width across (distance: median)",
+                "longest gap across"],
+        rows=rows,
+        caption="Along: a sensor moving upwind from the robot's start to the source's x at "
+                "y = source.y (the centreline) and at the other offsets; the gaps of every "
+                "plume pooled. Across: a sensor moving crosswind wall to wall at each distance "
+                "downwind of the source; the band runs from its first to its last detection."))
+    rows = []
+    for r in readings:
+        ps = r["plume_stats"]
+        rel, sp = ps.get("release") or {}, ps.get("spirals") or {}
+        lost = _int(sp.get("lost"))
+        rows.append([Cell(r.get("name") + (" (main)" if r.get("main") else ""), cls="key"),
+                     Cell(_of(_int(rel.get("in_odor")), _int(rel.get("trials"))), num=True),
+                     Cell(_of(_int(rel.get("within_d_lost")), _int(rel.get("trials"))), num=True),
+                     Cell(_of(lost, _int(sp.get("surges"))), num=True),
+                     Cell(_of(_int(sp.get("within_one_turn")), lost), num=True),
+                     Cell(_of(_int(sp.get("reacquired")), lost), num=True),
+                     Cell(f"{_int(sp.get('walls')) or 0} / {_int(sp.get('out_of_turns')) or 0}",
+                          num=True),
+                     Cell(_m(_num(sp.get("distance_median"))), num=True)])
+    blocks.append(Table(
+        header=["reading", "odor at release", "odor within d_lost upwind",
+                "surges that lost the plume", "spirals with odor within one turn",
+                "spirals with odor", "spirals without odor: wall / turns",
+                "median path to odor"],
+        rows=rows,
+        caption="Release: a sensor at the robot's start at release (t = 0 after the warm-up), "
+                "then moving upwind for d_lost. Spirals: virtual surges from the start at a "
+                "measured upwind heading, each followed, where it loses the plume, by the "
+                "surge-spiral's spiral (its d_gap and start radius) until odor, a wall or "
+                f"{fmt_value(_num(ps0.get('turns')))} turns."))
+    marks = [(d_lost, f"d_lost {_m(d_lost)}")] if d_lost else []
+    if smallest is not None and smallest != d_lost:
+        marks.append((smallest, f"smallest d_lost of the sets {_m(smallest)}"))
+    path = plume_gaps_figure(readings, marks, fig_dir / "plume_gaps.png")
+    written.append(path)
+    blocks.append(_fig(out_dir, path, "Gaps between detections along the centreline, per "
+                       "reading: the share of gaps at least as long as L against L (both axes "
+                       "logarithmic); a gap is the distance a sensor goes without odor between "
+                       "two detections, the distance the controllers compare with d_lost. "
+                       "Dashed: the paper's fixed d_lost and the smallest d_lost of sets B, E "
+                       "and H. A reading without a gap has no curve.",
+                       "Gap lengths along the centreline per reading, beside d_lost"))
+    return Section("plume", title, blocks)
+
+
+def _listed(names: list) -> str:
+    """"a", "a and b", "a, b and c"."""
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _safe_name(name: str) -> str:

@@ -1,19 +1,15 @@
 #include "lochmatter2008/summary.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
-#include <mutex>
 #include <set>
 #include <sstream>
-#include <system_error>
-#include <thread>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/parallel.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/io/json_util.hpp"
@@ -21,6 +17,7 @@
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/probe.hpp"
 #include "plumetrace/sim/trace.hpp"
 
@@ -197,30 +194,8 @@ json failures_json(const std::vector<ExpandedSweep>& sweeps, const std::vector<R
   }
   // the re-runs, in parallel; each result lands in its own slot
   std::vector<FailedRun> done(jobs.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex failure_mutex;
-  std::exception_ptr failure;
-  const auto work = [&] {
-    try {
-      for (std::size_t i = next++; i < jobs.size(); i = next++) {
-        done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run);
-      }
-    } catch (...) {
-      // why: an exception leaving a thread ends the process; the caller rethrows it instead
-      const std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = jobs.size();
-    }
-  };
-  std::vector<std::thread> pool;
-  try {
-    for (int t = 1; t < std::max(1, info.threads); ++t) pool.emplace_back(work);
-  } catch (const std::system_error&) {
-    // why: the re-runs share one counter, so fewer threads than asked only take longer
-  }
-  work();
-  for (auto& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
+  parallel_for(jobs.size(), info.threads,
+               [&](std::size_t i) { done[i] = rerun_failed(*jobs[i].scenario, jobs[i].run); });
 
   for (std::size_t a = 0; a < algorithms.size(); ++a) {
     const double sx = algorithms[a]["source_x"], sy = algorithms[a]["source_y"];
@@ -265,6 +240,22 @@ json detection_map_json(const Scenario& scenario, std::uint64_t seed) {
   options.interval = 0.32;
   options.seed = seed;
   return {{"x", grid.x}, {"y", grid.y}, {"fraction", detection_map(scenario, grid, options)}};
+}
+
+// the plume's own statistics (docs/plume-statistics.md) over kPlumeStatsTrials plumes, the
+// plumes of the runs' first trials: what the report compares with the paper's sentences about
+// the plume; of the gap lengths only the centreline's are kept (the report draws them)
+json plume_stats_summary(const Scenario& scenario, std::uint64_t seed, int threads) {
+  PlumeStatsOptions options;
+  options.seed = seed;
+  options.trials = kPlumeStatsTrials;
+  options.threads = std::max(1, threads);
+  json j = detail::plume_stats_json(plume_stats(scenario, options));
+  for (std::size_t i = 0; i < j["along"].size(); ++i) {
+    if (j["along"][i]["offset"] != 0.0) j["along"][i].erase("lengths");
+  }
+  for (auto& c : j["across"]) c.erase("lengths");
+  return j;
 }
 
 json sweep_definition_json(const SweepDef& def) {
@@ -359,6 +350,7 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
     const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
     if (!maps.count(key)) maps[key] = detection_map_json(sc, a->def.seed);
     doc["detection_map"] = maps[key];
+    doc["plume_stats"] = plume_stats_summary(sc, a->def.seed, info.threads);
     doc["success_radius"] = sc.supervisor.success_radius;
     // the value every compared key takes under this reading, preset or built-in default
     json values = json::object();

@@ -37,6 +37,10 @@ std::vector<ExpandedSweep> reading_sets(const std::vector<SweepDef>& sets, const
 /// Failed runs re-run per algorithm at the fixed values (of the main reading) at most.
 inline constexpr int kFailuresExamined = 25;
 
+/// Trials (plumes) of each reading's plume statistics in summary.json (docs/plume-statistics.md):
+/// a handful, so that the reproduction stays about as fast (docs/report.md).
+inline constexpr int kPlumeStatsTrials = 4;
+
 /// What `reproduce` hands to the report beyond the store's rows.
 struct ReproduceInfo {
   std::vector<std::string> sets;             ///< the experiment sets' names, in order
@@ -57,7 +61,8 @@ struct ReproduceInfo {
 /// claims, the sensitivity rows (of the radius sweep), one successful and one failed trajectory
 /// per trajectory set at its fixed values (re-run from seed and trial), the plume's detection
 /// map, where failed runs end (up to kFailuresExamined re-run per trajectory set), and for each
-/// reading its claims, its fixed-value statistics and its detection map.
+/// reading its claims, its fixed-value statistics, its detection map and its plume statistics
+/// (kPlumeStatsTrials plumes of the sets' master seed).
 std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::vector<RunRow>& rows,
                           const ReproduceInfo& info);
 

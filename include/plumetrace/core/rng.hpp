@@ -6,10 +6,11 @@ namespace plumetrace {
 
 /// The named random streams of one run (docs/model.md section 10).
 enum class Stream : std::uint64_t {
-  kPlume = 1,       ///< filament release and random walk
-  kWindSensor = 2,  ///< wind-sensor noise
-  kController = 3,  ///< the controller's own choices (initial side, tie breaks)
-  kWind = 4,        ///< the wind field's own randomness (a constant wind draws none)
+  kPlume = 1,          ///< filament release and random walk
+  kWindSensor = 2,     ///< wind-sensor noise
+  kController = 3,     ///< the controller's own choices (initial side, tie breaks)
+  kWind = 4,           ///< the wind field's own randomness (a constant wind draws none)
+  kVirtualSensor = 5,  ///< the plume statistics' virtual surges (their wind readings, side guesses)
 };
 
 /// One step of the SplitMix64 sequence: advances state and returns a well-mixed 64-bit value.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/world.hpp"
 
 namespace plumetrace::detail {
@@ -25,6 +26,9 @@ json result_json(const RunResult& r, const RunInfo& info);
 
 /// The statistics of one point (keys documented in docs/report.md).
 json stats_json(const PointStats& p);
+
+/// A plume's statistics (keys documented in docs/plume-statistics.md).
+json plume_stats_json(const PlumeStats& st);
 
 /// A text field of a CSV file, quoted as RFC 4180 says where it must be: a field holding a
 /// comma, a double quote or a line break is enclosed in double quotes, each one doubled.

@@ -6,6 +6,7 @@
 
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/probe.hpp"
 #include "plumetrace/sim/world.hpp"
 
@@ -19,6 +20,9 @@ std::string probe_to_json(const std::vector<ProbeResult>& results);
 
 /// A probe report as {"points": [...], "centrelines": [{x, mean_y, std_y, samples, empty}]}.
 std::string probe_to_json(const ProbeReport& report);
+
+/// A plume's statistics as one JSON document (docs/plume-statistics.md).
+std::string plume_stats_to_json(const PlumeStats& stats);
 
 /// A detection map as {"x": [...], "y": [...], "z": z, "fraction": [[...] per y]}.
 std::string detection_map_to_json(const MapGrid& grid,

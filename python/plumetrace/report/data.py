@@ -246,6 +246,8 @@ def _check_summary(data: Any, path: Path) -> dict:
             c.text(p.get("algorithm"), f"{where}.fixed[{j}].algorithm")
         if r.get("detection_map") is not None:
             _check_map(c, r["detection_map"], f"{where}.detection_map")
+        if r.get("plume_stats") is not None:
+            _check_plume_stats(c, r["plume_stats"], f"{where}.plume_stats")
 
     fails = data.get("failures")
     if fails is not None:
@@ -277,6 +279,35 @@ def _check_map(c: "_Checker", dmap: Any, where: str) -> None:
     for j, row in enumerate(rows):
         if len(c.numbers(row, f"{where}.fraction[{j}]")) != len(xs):
             c.fail(f"{where}.fraction[{j}]", f"has {len(row)} entries, x has {len(xs)}")
+
+
+GAP_NUMBERS = ("paths", "paths_with_odor", "samples", "detections", "detected_fraction", "gaps",
+               "median", "p90", "longest", "longer_than_d_lost", "fraction_longer")
+RELEASE_NUMBERS = ("trials", "in_odor", "within_d_lost")
+SPIRAL_NUMBERS = ("surges", "lost", "within_one_turn", "reacquired", "walls", "out_of_turns",
+                  "distance_median")
+
+
+def _check_plume_stats(c: "_Checker", ps: Any, where: str) -> None:
+    """A reading's plume statistics (docs/plume-statistics.md; keys in docs/report.md)."""
+    c.obj(ps, where)
+    for key in ("trials", "d_lost", "speed", "turns"):
+        c.num(ps.get(key), f"{where}.{key}")
+    for part, own in (("along", "offset"), ("across", "distance")):
+        for i, line in enumerate(c.lst(ps.get(part) or [], f"{where}.{part}")):
+            at = f"{where}.{part}[{i}]"
+            c.obj(line, at)
+            c.num(line.get(own), f"{at}.{own}", nullable=False)
+            for key in GAP_NUMBERS + ("leading_median", "band_median", "band_max"):
+                c.num(line.get(key), f"{at}.{key}")
+            for key in ("lengths", "band_widths"):
+                if line.get(key) is not None:
+                    c.numbers(line[key], f"{at}.{key}")
+    for part, keys in (("release", RELEASE_NUMBERS), ("spirals", SPIRAL_NUMBERS)):
+        if ps.get(part) is not None:
+            c.obj(ps[part], f"{where}.{part}")
+            for key in keys:
+                c.num(ps[part].get(key), f"{where}.{part}.{key}")
 
 
 def _check_sensitivity(data: Any, path: Path) -> dict:
@@ -432,6 +463,26 @@ def _readings(summary: dict) -> list:
                      "unclear": counts["unclear"]}]
     readings.sort(key=lambda r: not r.get("main"))
     return readings
+
+
+def poisson_interval(k: int, exposure: float) -> tuple:
+    """The 95% interval of a Poisson rate from `k` events over `exposure` units: Byar's
+    approximation of the exact (Garwood) interval, within 1% of it from k = 2 on, with the exact
+    upper end ln(40) at k = 0 and lower end 0."""
+    z = 1.959963984540054
+    if k == 0:
+        return 0.0, math.log(40.0) / exposure
+    lo = k * (1.0 - 1.0 / (9.0 * k) - z / (3.0 * math.sqrt(k))) ** 3
+    hi = (k + 1) * (1.0 - 1.0 / (9.0 * (k + 1)) + z / (3.0 * math.sqrt(k + 1))) ** 3
+    return lo / exposure, hi / exposure
+
+
+def _centreline(ps: Optional[dict]) -> Optional[dict]:
+    """The upwind line at offset 0 of a reading's plume statistics, or None."""
+    for line in (ps or {}).get("along") or []:
+        if _num(line.get("offset")) == 0.0:
+            return line
+    return None
 
 
 def _verdict_counts(claims: list) -> dict:

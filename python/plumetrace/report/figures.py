@@ -15,8 +15,8 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 
-from .data import (DASH, VERDICT_STYLE, Point, SweepSet, _fixed_points, _held, _int, _is_number,
-                   _num, _sensitivity_grid, fmt_value, verdict_style, write_whole)
+from .data import (DASH, VERDICT_STYLE, Point, SweepSet, _centreline, _fixed_points, _held, _int,
+                   _is_number, _num, _sensitivity_grid, fmt_value, verdict_style, write_whole)
 from .wording import counted, verb
 
 DPI = 100
@@ -699,4 +699,41 @@ def readings_success_figure(readings: list, algorithms: Sequence[str], path: Pat
     ax.set_axisbelow(True)
     ax.legend(fontsize=8, ncol=min(n, 5), loc="upper center", bbox_to_anchor=(0.5, -0.1),
               frameon=False)
+    return _save(fig, path)
+
+
+def plume_gaps_figure(readings: list, marks: Sequence[tuple], path: Path) -> Path:
+    """The gaps between detections of a sensor moving upwind along the plume's centreline, per
+    reading: the share of gaps at least as long as L, against L (log scales), with the lengths
+    of `marks` ((length, label) pairs: d_lost and the smallest d_lost of the sets) drawn as
+    vertical lines (docs/plume-statistics.md)."""
+    fig = _new_figure(10, 3.8)
+    ax = fig.subplots()
+    cmap = colormaps["tab10"]
+    shortest, longest = None, 1.0
+    for k, r in enumerate(readings):
+        line = _centreline(r.get("plume_stats"))
+        label = r.get("name") + (" (main)" if r.get("main") else "")
+        lengths = sorted(x for x in (line or {}).get("lengths") or [] if _is_number(x) and x > 0)
+        if not lengths:
+            ax.plot([], [], color=cmap(k % 10), label=f"{label}: no gap")
+            continue
+        n = len(lengths)
+        share = 1.0 - np.arange(n) / n  # the share of gaps at least as long as each
+        ax.step(lengths, share, where="post", color=cmap(k % 10), linewidth=1.4,
+                label=f"{label}: {n} gaps, longest {lengths[-1]:.2f} m")
+        shortest = lengths[0] if shortest is None else min(shortest, lengths[0])
+        longest = max(longest, lengths[-1])
+    for length, text in marks:
+        ax.axvline(length, color="#b2182b", linestyle="--", linewidth=1.0)
+        ax.text(length, 1.0, f" {text}", color="#b2182b", fontsize=8, va="top",
+                transform=ax.get_xaxis_transform())
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlim(left=min([shortest or 1e-3] + [m for m, _ in marks]) * 0.8,
+                right=max([m for m, _ in marks] + [longest]) * 1.5)
+    ax.set_xlabel("gap between detections along the centreline, L (m)")
+    ax.set_ylabel("share of gaps at least L long")
+    ax.grid(color="#e5e5e5", which="both", zorder=0)
+    ax.legend(fontsize=8, loc="lower left", frameon=False)
     return _save(fig, path)

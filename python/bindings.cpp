@@ -969,7 +969,8 @@ py::dict read_calibration_study(const py::handle& path) {
   d["truth"] = table(s.truth);
   d["fixed"] = table(s.fixed);
   d["validation"] = py::dict(py::arg("top") = s.validation.top, py::arg("runs") = s.validation.runs,
-                             py::arg("seed") = s.validation.seed);
+                             py::arg("seed") = s.validation.seed,
+                             py::arg("confirm_runs") = s.validation.confirm_runs);
   return d;
 }
 

@@ -135,8 +135,9 @@ std::map<std::string, SetStats> with_runs(std::map<std::string, SetStats> sets, 
   return sets;
 }
 
-ClaimResult claim(const std::map<std::string, SetStats>& sets, int id) {
-  const auto all = evaluate_claims(sets);
+ClaimResult claim(const std::map<std::string, SetStats>& sets, int id,
+                  ClaimRules rules = kDefaultRules) {
+  const auto all = evaluate_claims(sets, rules);
   for (const auto& c : all) {
     if (c.id == id) return c;
   }
@@ -149,6 +150,14 @@ ClaimResult claim(const std::map<std::string, SetStats>& sets, int id) {
     const ClaimResult c_ = claim(sets, id);                     \
     EXPECT_EQ(verdict_name(c_.verdict), verdict_name(expected)) \
         << "claim " << (id) << ": " << c_.evidence;             \
+  } while (0)
+
+// the verdict under rules 0.3.0 (docs/claims.md, "Two rule sets")
+#define EXPECT_VERDICT_030(sets, id, expected)                                   \
+  do {                                                                           \
+    const ClaimResult c_ = claim(sets, id, ClaimRules::kRules030);               \
+    EXPECT_EQ(verdict_name(c_.verdict), verdict_name(expected))                  \
+        << "claim " << (id) << " (rules 0.3.0): " << c_.evidence;                \
   } while (0)
 
 void set_profile(SetStats& s, const std::vector<int>& successes, const std::vector<double>& means,
@@ -270,10 +279,13 @@ TEST(Claims, Claim3HoldsInTheMirroredDirectionToo) {
   EXPECT_VERDICT(sets, 3, Verdict::kHolds);
 }
 
-TEST(Claims, Claim3FailsWhenDLostChangesNothing) {
+// An effect of exactly none lies on the one threshold of rules 0.4 (m = 0): no number of runs
+// can say which side it is on. Rules 0.3.0 said no, their m being above it.
+TEST(Claims, Claim3UnclearWhenDLostChangesNothingNotHeldUnder030) {
   auto sets = paper_like();
   set_profile(sets["B"], std::vector<int>(9, 44), std::vector<double>(9, 1.6), 0.15);
-  EXPECT_VERDICT(sets, 3, Verdict::kDoesNotHold);
+  EXPECT_VERDICT(sets, 3, Verdict::kUnclear);
+  EXPECT_VERDICT_030(sets, 3, Verdict::kDoesNotHold);
 }
 
 TEST(Claims, Claim3FailsWhenOneEndIsBetterInBoth) {
@@ -316,10 +328,19 @@ TEST(Claims, Claim5FailsWhenALargerGapIsCheaper) {
   EXPECT_VERDICT(sets, 5, Verdict::kDoesNotHold);
 }
 
-TEST(Claims, Claim5FailsWhenTheGapChangesNothing) {
+TEST(Claims, Claim5UnclearWhenTheGapChangesNothingNotHeldUnder030) {
   auto sets = paper_like();
   set_profile(sets["D"], std::vector<int>(9, 50), std::vector<double>(9, 1.35));
+  EXPECT_VERDICT(sets, 5, Verdict::kUnclear);
+  EXPECT_VERDICT_030(sets, 5, Verdict::kDoesNotHold);
+}
+
+TEST(Claims, Claim5FailsWhenASmallerGapGivesAHigherOverhead) {
+  auto sets = paper_like();
+  set_profile(sets["D"], std::vector<int>(9, 50),
+              {1.50, 1.48, 1.46, 0, 1.40, 1.38, 1.36, 1.34, 1.32});
   EXPECT_VERDICT(sets, 5, Verdict::kDoesNotHold);
+  EXPECT_VERDICT_030(sets, 5, Verdict::kDoesNotHold);
 }
 
 TEST(Claims, Claim5UnclearWhenNoisy) {
@@ -352,9 +373,17 @@ TEST(Claims, Claim7FailsWhenNoiseCostsSuccesses) {
   EXPECT_VERDICT(sets, 7, Verdict::kDoesNotHold);
 }
 
-TEST(Claims, Claim7FailsWhenOverheadDoesNotRise) {
+TEST(Claims, Claim7UnclearWhenOverheadDoesNotRiseNotHeldUnder030) {
   auto sets = paper_like();
   set_profile(sets["F"], std::vector<int>(9, 50), std::vector<double>(9, 1.35));
+  EXPECT_VERDICT(sets, 7, Verdict::kUnclear);
+  EXPECT_VERDICT_030(sets, 7, Verdict::kDoesNotHold);
+}
+
+TEST(Claims, Claim7FailsWhenOverheadFallsWithNoise) {
+  auto sets = paper_like();
+  set_profile(sets["F"], std::vector<int>(9, 50),
+              {1.60, 0, 1.54, 1.50, 1.45, 1.42, 1.39, 1.36, 1.33});
   EXPECT_VERDICT(sets, 7, Verdict::kDoesNotHold);
 }
 
@@ -390,11 +419,21 @@ TEST(Claims, Claim8FailsWhenOverheadIsStronglyCurved) {
   EXPECT_VERDICT(sets, 8, Verdict::kDoesNotHold);
 }
 
-TEST(Claims, Claim8FailsWhenTheSmallestCastSucceeds) {
+TEST(Claims, Claim8UnclearWhenTheSmallestCastSucceedsAsOftenNotHeldUnder030) {
   auto sets = paper_like();
   std::vector<double> linear;
   for (double x : kDCast) linear.push_back(1.30 + 4.0 / 9.0 * x);
   set_profile(sets["G"], std::vector<int>(9, 50), linear);
+  EXPECT_VERDICT(sets, 8, Verdict::kUnclear);
+  EXPECT_VERDICT_030(sets, 8, Verdict::kDoesNotHold);
+}
+
+TEST(Claims, Claim8FailsWhenTheSmallestCastSucceedsMoreOften) {
+  auto sets = paper_like();
+  std::vector<double> linear;
+  for (double x : kDCast) linear.push_back(1.30 + 4.0 / 9.0 * x);
+  set_profile(sets["G"], {50, 40, 40, 0, 40, 40, 40, 40, 40}, linear);
+  sets["G"].points[3] = make_point(50, 40, linear[3], 0.1);
   EXPECT_VERDICT(sets, 8, Verdict::kDoesNotHold);
 }
 
@@ -440,10 +479,21 @@ TEST(Claims, Claim9UnclearWhenBothChangeAlike) {
 
 // Claim 10: the three algorithms at their fixed values.
 
-TEST(Claims, Claim10FailsWhenCastingSucceedsAsOften) {
+TEST(Claims, Claim10UnclearWhenCastingSucceedsAsOftenNotHeldUnder030) {
   auto sets = paper_like();
   Fixed f;
   f.casting = make_point(50, 50, 1.6, 0.15);
+  set_fixed(sets, f);
+  EXPECT_VERDICT(sets, 10, Verdict::kUnclear);
+  EXPECT_VERDICT_030(sets, 10, Verdict::kDoesNotHold);
+}
+
+TEST(Claims, Claim10FailsWhenCastingSucceedsMoreOften) {
+  auto sets = paper_like();
+  Fixed f;
+  f.casting = make_point(50, 50, 1.6, 0.15);
+  f.spiral = make_point(50, 38, 1.35, 0.1);
+  f.surge = make_point(50, 38, 1.42, 0.1);
   set_fixed(sets, f);
   EXPECT_VERDICT(sets, 10, Verdict::kDoesNotHold);
 }
@@ -480,6 +530,87 @@ TEST(Claims, Claim11FailsWhenDLostMattersAsMuch) {
 
 TEST(Claims, Claim11UnclearWithTenRuns) {
   EXPECT_VERDICT(with_runs(paper_like(), 10), 11, Verdict::kUnclear);
+}
+
+// Rules 0.4 score claim 11 on the overhead spread alone (the paper's "performance"); rules 0.3.0
+// on the larger of the success and overhead spreads.
+TEST(Claims, Claim11WeighsOverheadAloneUnderRules04) {
+  auto sets = paper_like();
+  // surge-spiral's d_lost decides success (50 down to 20 of 50) but not the overhead
+  set_profile(sets["E"], {50, 50, 50, 0, 40, 35, 30, 25, 20}, std::vector<double>(9, 1.35));
+  EXPECT_VERDICT(sets, 11, Verdict::kHolds);
+  EXPECT_VERDICT_030(sets, 11, Verdict::kDoesNotHold);
+  const ClaimResult c = claim(sets, 11);
+  EXPECT_NE(c.evidence.find("not tested"), std::string::npos) << c.evidence;
+  // an overhead that d_lost moves as much as d_gap does fails under both
+  set_profile(sets["E"], std::vector<int>(9, 50), {2.0, 1.9, 1.75, 0, 1.45, 1.3, 1.25, 1.2, 1.2});
+  EXPECT_VERDICT(sets, 11, Verdict::kDoesNotHold);
+  EXPECT_VERDICT_030(sets, 11, Verdict::kDoesNotHold);
+}
+
+// The case (docs/claims.md, "Rules 0.4"): claim 5 with a true effect of +1% of
+// overhead, below rules 0.3.0's m of 5%. Rules 0.3.0 say "does not hold" at 50 runs per value and
+// "holds" at 200; rules 0.4 never say "does not hold", and "holds" once the interval is narrow.
+TEST(ClaimRules, ASmallTrueEffectConvergesUnder04AndFlipsUnder030) {
+  const auto small_rise = [](int runs) {
+    auto sets = paper_like();
+    SetStats& d = sets["D"];
+    for (int i = 0; i < 9; ++i) {
+      // 1.35 in the lower half, 1.3635 (+1%) in the upper half
+      d.points[i] = make_point(runs, runs, i < 4 ? 1.35 : 1.3635, 0.1);
+    }
+    return sets;
+  };
+  const ClaimResult at50 = claim(small_rise(50), 5), at200 = claim(small_rise(200), 5);
+  EXPECT_EQ(at50.verdict, Verdict::kUnclear) << at50.evidence;
+  EXPECT_EQ(at200.verdict, Verdict::kHolds) << at200.evidence;
+  EXPECT_EQ(claim(small_rise(50), 5, ClaimRules::kRules030).verdict, Verdict::kDoesNotHold);
+  EXPECT_EQ(claim(small_rise(200), 5, ClaimRules::kRules030).verdict, Verdict::kHolds);
+  // the part carries its figures: +1% in an interval around it, against m = 0
+  ASSERT_EQ(at200.parts.size(), 1u);
+  const ClaimPart& p = at200.parts[0];
+  EXPECT_NEAR(p.estimate, 0.01, 1e-9);
+  EXPECT_LT(p.lo, p.estimate);
+  EXPECT_GT(p.hi, p.estimate);
+  EXPECT_GT(p.lo, 0.0);
+  EXPECT_EQ(p.threshold, 0.0);
+  EXPECT_EQ(claim(small_rise(200), 5, ClaimRules::kRules030).parts[0].threshold, 0.05);
+}
+
+// Under rules 0.4 a directional verdict moves one way as runs grow: from unclear to the side of
+// its true effect, never from yes to no or back, for effects on either side of m = 0.
+TEST(ClaimRules, DirectionalVerdictsMoveOnlyTowardTheTruthAsRunsGrow) {
+  for (double effect : {-0.03, -0.01, 0.01, 0.03}) {
+    Verdict seen = Verdict::kUnclear;
+    for (int runs : {10, 20, 50, 100, 200, 500, 1000, 5000}) {
+      auto sets = paper_like();
+      for (int i = 0; i < 9; ++i) {
+        sets["D"].points[i] = make_point(runs, runs, i < 4 ? 1.35 : 1.35 * (1 + effect), 0.1);
+      }
+      const Verdict v = claim(sets, 5).verdict;
+      if (seen != Verdict::kUnclear) EXPECT_EQ(v, seen) << effect << " at " << runs;
+      if (v != Verdict::kUnclear) seen = v;
+    }
+    EXPECT_EQ(seen, effect > 0 ? Verdict::kHolds : Verdict::kDoesNotHold) << effect;
+  }
+}
+
+// Every part's figures: a tested quantity inside its interval, and a threshold wherever there is
+// an interval.
+TEST(ClaimRules, EveryPartWithAnIntervalCarriesItsEstimateAndThreshold) {
+  for (ClaimRules rules : {ClaimRules::kRules04, ClaimRules::kRules030}) {
+    for (const ClaimResult& c : evaluate_claims(paper_like(), rules)) {
+      for (const ClaimPart& p : c.parts) {
+        if (std::isnan(p.lo)) continue;
+        EXPECT_LE(p.lo, p.estimate + 1e-12) << c.id << ": " << p.text;
+        EXPECT_GE(p.hi, p.estimate - 1e-12) << c.id << ": " << p.text;
+        EXPECT_FALSE(std::isnan(p.threshold)) << c.id << ": " << p.text;
+      }
+    }
+  }
+  EXPECT_EQ(rules_name(ClaimRules::kRules04), "0.4");
+  EXPECT_EQ(rules_name(ClaimRules::kRules030), "0.3.0");
+  EXPECT_EQ(kDefaultRules, ClaimRules::kRules04);
 }
 
 // margins (docs/claims.md, "Margins")

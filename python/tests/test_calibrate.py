@@ -270,6 +270,33 @@ def test_search_never_asks_for_held_out_claims_and_their_changes_do_not_move_it(
     assert values[0] == values[1]
 
 
+def test_confirm_runs_validate_the_same_candidates_again_at_more_runs_with_the_same_seed(
+        tmp_path, monkeypatch):
+    fake = FakeEvaluation()
+    monkeypatch.setattr(search, "evaluate", fake)
+    study = study_file(tmp_path, f'sets_dir = "{SETS}"\n' + PAPER_STUDY + "confirm_runs = 7\n")
+    out = tmp_path / "out"
+    assert calibrate.main([str(study), "--out", str(out), "--trials", "4", "--quiet"]) == 0
+    val = [c for c in fake.calls if c["seed"] == 12]
+    # each of the two validated candidates at 3 runs, then at 7, with every claim
+    assert [c["runs"] for c in val] == [3, 7, 3, 7]
+    assert all(c["claims"] == [] for c in val)
+    assert val[0]["settings"] == val[1]["settings"] != val[2]["settings"] == val[3]["settings"]
+    doc = json.loads((out / "validation.json").read_text())
+    assert doc["validation"]["confirm_runs"] == 7 and doc["plan"]["confirm_runs"] == 7
+    for cand in doc["candidates"]:
+        confirm = cand["confirm"]
+        assert confirm["runs"] == 7 and len(confirm["claims"]) == 11
+        assert confirm["held_out_holds"] == sum(c["verdict"] == "holds" for c in confirm["claims"]
+                                                if c["role"] == "held-out")
+    page = (out / "calibration.html").read_text()
+    assert "Claims at 7 runs per value (the same seed 12)" in page
+    # run again: the validation is reused, nothing is evaluated
+    calls = len(fake.calls)
+    assert calibrate.main([str(study), "--out", str(out), "--trials", "4", "--quiet"]) == 0
+    assert len(fake.calls) == calls
+
+
 # --- bad study files ---------------------------------------------------------------------------
 
 @pytest.mark.parametrize("body, unknowns, says", [
@@ -277,6 +304,8 @@ def test_search_never_asks_for_held_out_claims_and_their_changes_do_not_move_it(
     ("[validation]\nsamples = 3\n", UNKNOWNS, "unknown key 'validation.samples'"),
     ("runs = 0\n", UNKNOWNS, "'runs': bad range"),
     ("seed = 4\n[validation]\nseed = 4\n", UNKNOWNS, "'validation.seed' must differ"),
+    ("[validation]\nruns = 5\nconfirm_runs = 5\n", UNKNOWNS,
+     "'validation.confirm_runs' (5) must be more than 'validation.runs' (5)"),
     ('search = ["amount", "wind"]\n', UNKNOWNS, "unknown 'wind'"),
     ('target = "paper-ish"\n', UNKNOWNS, "'target'"),
     ("", UNKNOWNS.replace("low = 0.1", "low = 0.7"), "success_radius: bad range"),

@@ -13,11 +13,11 @@ std::string_view support_name(Support s) {
   return s == Support::kYes ? "yes" : s == Support::kNo ? "no" : "unclear";
 }
 
-Part part(const Test& test, const std::string& text) {
+Part part(const Test& test, const std::string& text, const Figures& figures) {
   const Support s = test.support;
   std::string out = text;
   out.append(" -> ").append(support_name(s));
-  return {s, test.margin, std::move(out)};
+  return {s, test.margin, std::move(out), figures};
 }
 
 // the tests

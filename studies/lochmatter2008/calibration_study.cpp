@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kStudyKeys = {
     "evidenced_only", "fixed",  "name",    "runs",   "search", "seed",     "sets",      "sets_dir",
     "startup_trials", "target", "threads", "trials", "truth",  "unknowns", "validation"};
-const std::vector<std::string> kValidationKeys = {"runs", "seed", "top"};
+const std::vector<std::string> kValidationKeys = {"confirm_runs", "runs", "seed", "top"};
 const std::vector<std::string> kTargets = {"paper", "synthetic"};
 
 // the search's seed plus this is the validation's default seed (a fresh one)
@@ -377,6 +377,14 @@ void read_validation(const toml::table& doc, CalibrationStudy& study, const Wher
       where.positive(val.get("runs"), "validation.runs", v.runs, kMaxCampaignRuns));
   v.seed =
       static_cast<std::uint64_t>(where.positive(val.get("seed"), "validation.seed", 0, INT64_MAX));
+  if (const toml::node* c = val.get("confirm_runs")) {
+    v.confirm_runs = static_cast<int>(
+        where.positive(c, "validation.confirm_runs", 0, kMaxCampaignRuns));
+    if (v.confirm_runs <= v.runs) {
+      where.fail("'validation.confirm_runs' (" + std::to_string(v.confirm_runs) +
+                 ") must be more than 'validation.runs' (" + std::to_string(v.runs) + ")");
+    }
+  }
   // why: unsigned, so the default cannot overflow (a seed is at most 2^63 - 1)
   if (v.seed == 0) v.seed = study.seed + kValidationSeedOffset;
   if (v.seed == study.seed) {
@@ -393,8 +401,10 @@ void check_evaluation_size(const CalibrationStudy& study, const Where& where) {
   for (const auto& name : study.sets) {
     points += grid_points(read_sweep_file((fs::path(study.sets_dir) / (name + ".toml")).string()));
   }
-  const std::pair<const char*, int> runs[] = {{"runs", study.runs},
-                                              {"validation.runs", study.validation.runs}};
+  const std::pair<const char*, int> runs[] = {
+      {"runs", study.runs},
+      {"validation.runs", study.validation.runs},
+      {"validation.confirm_runs", study.validation.confirm_runs}};
   for (const auto& [key, per_value] : runs) {
     const std::int64_t total = points * per_value;
     if (total > kMaxCampaignRuns) {

@@ -62,6 +62,9 @@ struct CalibrationValidation {
   int runs = 50;
   /// The fresh master seed (never the search's).
   std::uint64_t seed = 0;
+  /// Runs per value of a second validation with the same seed, more than `runs` (0: none); its
+  /// verdicts are shown beside, and docs/fidelity.md's rule reads them.
+  int confirm_runs = 0;
 };
 
 /// A calibration study as its file says, checked, with every path resolved.

@@ -59,12 +59,12 @@ using evidence::within;
 // Thresholds of the decision rules; docs/claims.md gives the reason for each. They were fixed
 // before any data were looked at and must not be changed to make a claim hold.
 
-// Success rates, absolute: a directional claim ("success is lower at ...") is contradicted when
-// the data exclude a difference of this size in the claimed direction, and "barely changes",
-// "comparable" and "not the failure rate" tolerate changes smaller than this.
+// Success rates, absolute: "barely changes", "comparable" and "not the failure rate" tolerate
+// changes smaller than this; under rules 0.3.0 it was also the m of directional success parts
+// (a part contradicted when the data exclude a difference of this size in the claimed direction).
 constexpr double kSuccessMargin = 0.10;
-// Overheads, as a fraction of the reference group's mean: the smallest effect a directional
-// claim needs, and the largest change "barely" and "comparable" tolerate.
+// Overheads, as a fraction of the reference group's mean: the m of directional overhead parts
+// under rules 0.3.0 only, and the largest change "barely" and "comparable" tolerate.
 constexpr double kMinOverheadEffect = 0.05;
 constexpr double kNegligibleOverhead = 0.10;
 // Words of single claims.
@@ -72,18 +72,40 @@ constexpr double kVirtuallyAll = 0.95;       // claim 1: success rate
 constexpr double kBetaSplit = 20.0;          // claim 2: "beta > 20 deg" (deg)
 constexpr double kAcceptable = 0.80;         // claim 2: acceptable success rate
 constexpr double kAlmostAlwaysFails = 0.20;  // claim 4: success rate below this
-constexpr double kSlightEffect = 0.01;       // claim 6: "slightly lower" overhead, fraction
+constexpr double kSlightEffect = 0.01;       // claim 6 under rules 0.3.0: its m
 constexpr double kLowRate = 0.50;            // claim 8: rise over the range / overhead
 constexpr double kLackOfFitAlpha = 0.05;     // claim 8: lack-of-fit test level
 constexpr double kMaxNonlinearity = 0.25;    // claim 8: largest deviation / rise
 constexpr double kMuchLess = 0.50;           // claim 11: "much less" = less than half
-// How every directional part reads its effect against its m: the rule of 0.3.0 (docs/claims.md,
-// "The tests applied to each part").
-constexpr DirectionalRule kDirectionalRule = DirectionalRule::kLegacy030;
 
-// A directional part under the claims' rule.
-Test directional(const Interval& effect, double m) {
-  return evidence::directional(effect, m, kDirectionalRule);
+// What a rule set decides differently (docs/claims.md, "Rules 0.4: rules that converge"): how a
+// directional part reads its effect against its m, the m of each kind of directional part, and
+// what claim 11's importance measures.
+struct RuleSet {
+  DirectionalRule directional;  // how e is read against m
+  double success_m;             // directional success parts
+  double overhead_m;            // directional overhead parts
+  double slight_m;              // claim 6's "slightly lower"
+  bool importance_of_overhead;  // claim 11: the overhead spread alone, else the larger spread
+};
+
+// rules 0.3.0: yes above 0, no below m, with m from the thresholds above
+constexpr RuleSet kRules030{DirectionalRule::kLegacy030, kSuccessMargin, kMinOverheadEffect,
+                            kSlightEffect, false};
+// rules 0.4: one threshold m = 0 for every directional part, the paper stating only directions;
+// claim 11 on overhead, the paper's measure of "performance"
+constexpr RuleSet kRules04{DirectionalRule::kSingleThreshold, 0.0, 0.0, 0.0, true};
+
+const RuleSet& rule_set(ClaimRules rules) {
+  return rules == ClaimRules::kRules030 ? kRules030 : kRules04;
+}
+
+// A directional part's test under a rule set, and its figures.
+Test directional(const Interval& effect, double m, const RuleSet& r) {
+  return evidence::directional(effect, m, r.directional);
+}
+evidence::Figures figures(double estimate, const Interval& interval, double threshold) {
+  return {estimate, interval, threshold};
 }
 
 Verdict verdict_of(Support s) {
@@ -149,37 +171,41 @@ Needed need(const Sets& sets, std::initializer_list<const char*> names, int min_
 // recurring parts
 
 // "Overhead is higher in `high` than in `low`" (relative to `low`).
-Part overhead_rises(const Group& low, const Group& high, double min_effect,
+Part overhead_rises(const Group& low, const Group& high, double min_effect, const RuleSet& r,
                     const std::string& what) {
   const Interval rise = relative_difference(high.overhead, low.overhead, low.overhead);
-  return part(directional(rise, min_effect),
+  const double point = relative_point(high.overhead, low.overhead, low.overhead);
+  return part(directional(rise, min_effect, r),
               what + ": " + low.label + " " + describe(low.overhead) + ", " + high.label + " " +
-                  describe(high.overhead) + "; change " +
-                  pct(relative_point(high.overhead, low.overhead, low.overhead)) + " " +
-                  pct_interval_text(rise));
+                  describe(high.overhead) + "; change " + pct(point) + " " +
+                  pct_interval_text(rise),
+              figures(point, rise, min_effect));
 }
 
 // "Success is lower in `low_success` than in `high_success`".
 Part success_drops(const Group& high_success, const Group& low_success, double min_effect,
-                   const std::string& what) {
+                   const RuleSet& r, const std::string& what) {
   const Interval drop = rate_difference(high_success.rate, low_success.rate);
-  return part(directional(drop, min_effect),
+  const double point = high_success.rate.p() - low_success.rate.p();
+  return part(directional(drop, min_effect, r),
               what + ": " + high_success.label + " " + describe(high_success.rate) + ", " +
                   low_success.label + " " + describe(low_success.rate) + "; difference " +
-                  num(high_success.rate.p() - low_success.rate.p()) + " " + interval_text(drop));
+                  num(point) + " " + interval_text(drop),
+              figures(point, drop, min_effect));
 }
 
 // the claims
 
-Decision claim1(const Sets& sets) {
+Decision claim1(const Sets& sets, const RuleSet& /*rules: no directional part*/) {
   const Needed n = need(sets, {"D", "E", "F"}, 1);
   if (!n.problem.empty()) return unclear_because(n.problem);
   const Group all = pool_sets(n.sets, Points::kAll).group;
   return decide({part(at_least(all.rate.ci(), kVirtuallyAll),
-                      all.label + " success " + describe(all.rate) + " vs " + num(kVirtuallyAll))});
+                      all.label + " success " + describe(all.rate) + " vs " + num(kVirtuallyAll),
+                      figures(all.rate.p(), all.rate.ci(), kVirtuallyAll))});
 }
 
-Decision claim2(const Sets& sets) {
+Decision claim2(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"A"});
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& a = *n.sets[0];
@@ -192,11 +218,12 @@ Decision claim2(const Sets& sets) {
   }
   const Group lo = pool(a, small), hi = pool(a, large);
   std::vector<Part> parts;
-  parts.push_back(success_drops(hi, lo, kSuccessMargin, "success lower at small beta"));
-  parts.push_back(overhead_rises(lo, hi, kMinOverheadEffect, "overhead lower at small beta"));
+  parts.push_back(success_drops(hi, lo, r.success_m, r, "success lower at small beta"));
+  parts.push_back(overhead_rises(lo, hi, r.overhead_m, r, "overhead lower at small beta"));
   parts.push_back(part(
       at_least(hi.rate.ci(), kAcceptable),
-      "beta > 20 acceptable: " + hi.label + " " + describe(hi.rate) + " vs " + num(kAcceptable)));
+      "beta > 20 acceptable: " + hi.label + " " + describe(hi.rate) + " vs " + num(kAcceptable),
+      figures(hi.rate.p(), hi.rate.ci(), kAcceptable)));
   // "only": no single value at or below 20 deg reaches an acceptable rate
   Test none{Support::kYes, INFINITY};
   int best = small.front();
@@ -210,12 +237,14 @@ Decision claim2(const Sets& sets) {
     if (a.points[i].success_rate > a.points[best].success_rate) best = i;
   }
   const Group best_group = pool(a, {best});
-  parts.push_back(part(none, "no beta <= 20 acceptable: best " + best_group.label + " " +
-                                 describe(best_group.rate) + " vs " + num(kAcceptable)));
+  parts.push_back(part(none,
+                       "no beta <= 20 acceptable: best " + best_group.label + " " +
+                           describe(best_group.rate) + " vs " + num(kAcceptable),
+                       figures(best_group.rate.p(), best_group.rate.ci(), kAcceptable)));
   return decide(parts);
 }
 
-Decision claim3(const Sets& sets) {
+Decision claim3(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"B"});
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& b = *n.sets[0];
@@ -223,10 +252,10 @@ Decision claim3(const Sets& sets) {
   const Interval success_up = rate_difference(hi.rate, lo.rate);
   const Interval overhead_up = relative_difference(hi.overhead, lo.overhead, lo.overhead);
   // either success drops at the low end and overhead worsens at the high end, or the reverse
-  const Test rising_test = all_of(
-      {directional(success_up, kSuccessMargin), directional(overhead_up, kMinOverheadEffect)});
-  const Test falling_test = all_of({directional(negate(success_up), kSuccessMargin),
-                                    directional(negate(overhead_up), kMinOverheadEffect)});
+  const Test rising_test = all_of({directional(success_up, r.success_m, r),
+                                   directional(overhead_up, r.overhead_m, r)});
+  const Test falling_test = all_of({directional(negate(success_up), r.success_m, r),
+                                    directional(negate(overhead_up), r.overhead_m, r)});
   const Support rising = rising_test.support, falling = falling_test.support;
   // why: either pattern will do, so the claim is as close to holding as the better pattern
   Test either{Support::kUnclear, std::isnan(rising_test.margin) || std::isnan(falling_test.margin)
@@ -247,7 +276,7 @@ Decision claim3(const Sets& sets) {
                         pct_interval_text(overhead_up) + "; " + which)});
 }
 
-Decision claim4(const Sets& sets) {
+Decision claim4(const Sets& sets, const RuleSet& /*rules: no directional part*/) {
   const Needed n = need(sets, {"C"}, 7);
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& c = *n.sets[0];
@@ -258,60 +287,66 @@ Decision claim4(const Sets& sets) {
   std::vector<Part> parts;
   parts.push_back(part(below(top.rate.ci(), kAlmostAlwaysFails),
                        "fails at the top: " + top.label + " success " + describe(top.rate) +
-                           " vs " + num(kAlmostAlwaysFails)));
+                           " vs " + num(kAlmostAlwaysFails),
+                       figures(top.rate.p(), top.rate.ci(), kAlmostAlwaysFails)));
   const Interval ds = rate_difference(mid.rate, low.rate);
   parts.push_back(part(within(ds, kSuccessMargin),
                        "success barely changes: " + low.label + " " + describe(low.rate) + ", " +
                            mid.label + " " + describe(mid.rate) + "; change " +
                            num(mid.rate.p() - low.rate.p()) + " " + interval_text(ds) + " vs +-" +
-                           num(kSuccessMargin)));
+                           num(kSuccessMargin),
+                       figures(mid.rate.p() - low.rate.p(), ds, kSuccessMargin)));
   const Interval dov = relative_difference(mid.overhead, low.overhead, low.overhead);
   parts.push_back(part(within(dov, kNegligibleOverhead),
                        "overhead barely changes: " + describe(low.overhead) + " -> " +
                            describe(mid.overhead) + "; change " +
                            pct(relative_point(mid.overhead, low.overhead, low.overhead)) + " " +
-                           pct_interval_text(dov) + " vs +-" + margin_pct(kNegligibleOverhead)));
+                           pct_interval_text(dov) + " vs +-" + margin_pct(kNegligibleOverhead),
+                       figures(relative_point(mid.overhead, low.overhead, low.overhead), dov,
+                               kNegligibleOverhead)));
   return decide(parts);
 }
 
-Decision claim5(const Sets& sets) {
+Decision claim5(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"D"});
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& d = *n.sets[0];
-  return decide({overhead_rises(pool(d, lower_half(d)), pool(d, upper_half(d)), kMinOverheadEffect,
+  return decide({overhead_rises(pool(d, lower_half(d)), pool(d, upper_half(d)), r.overhead_m, r,
                                 "overhead lower at small d_gap")});
 }
 
-Decision claim6(const Sets& sets) {
+Decision claim6(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"E"});
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& e = *n.sets[0];
   const Group lo = pool(e, lower_half(e)), hi = pool(e, upper_half(e));
   const Interval fall = relative_difference(lo.overhead, hi.overhead, lo.overhead);
-  return decide({part(directional(fall, kSlightEffect),
+  const double point = relative_point(lo.overhead, hi.overhead, lo.overhead);
+  return decide({part(directional(fall, r.slight_m, r),
                       "overhead lower at high d_lost: " + lo.label + " " + describe(lo.overhead) +
                           ", " + hi.label + " " + describe(hi.overhead) + "; decrease " +
-                          pct(relative_point(lo.overhead, hi.overhead, lo.overhead)) + " " +
-                          pct_interval_text(fall))});
+                          pct(point) + " " + pct_interval_text(fall),
+                      figures(point, fall, r.slight_m))});
 }
 
-Decision claim7(const Sets& sets) {
+Decision claim7(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"F"});
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& f = *n.sets[0];
   const Group lo = pool(f, lower_half(f)), hi = pool(f, upper_half(f));
   std::vector<Part> parts;
-  parts.push_back(overhead_rises(lo, hi, kMinOverheadEffect, "overhead higher at high sigma_a"));
+  parts.push_back(overhead_rises(lo, hi, r.overhead_m, r, "overhead higher at high sigma_a"));
   const Interval failure_rise = rate_difference(lo.rate, hi.rate);
   parts.push_back(part(below(failure_rise, kSuccessMargin),
                        "failure rate not raised: " + lo.label + " " + describe(lo.rate) + ", " +
                            hi.label + " " + describe(hi.rate) + "; success drop " +
                            num(lo.rate.p() - hi.rate.p()) + " " + interval_text(failure_rise) +
-                           " vs " + num(kSuccessMargin)));
+                           " vs " + num(kSuccessMargin),
+                       figures(lo.rate.p() - hi.rate.p(), failure_rise, kSuccessMargin)));
   return decide(parts);
 }
 
-Decision claim8(const Sets& sets) {
+Decision claim8(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"G"}, 3);
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& g = *n.sets[0];
@@ -329,9 +364,12 @@ Decision claim8(const Sets& sets) {
                                  num(fit.level) + " at d_cast " + value_text(g.values.front()) +
                                  ", rise over the range " + pct(fit.slope * to_rise) + " " +
                                  pct_interval_text(rise);
-    parts.push_back(part(directional(rise, kMinOverheadEffect), "grows: " + fit_text));
-    parts.push_back(part(below(rise, kLowRate), "at a low rate: rise " + pct_interval_text(rise) +
-                                                    " vs " + margin_pct(kLowRate)));
+    parts.push_back(part(directional(rise, r.overhead_m, r), "grows: " + fit_text,
+                         figures(fit.slope * to_rise, rise, r.overhead_m)));
+    parts.push_back(part(below(rise, kLowRate),
+                         "at a low rate: rise " + pct_interval_text(rise) + " vs " +
+                             margin_pct(kLowRate),
+                         figures(fit.slope * to_rise, rise, kLowRate)));
     const double rise_abs = std::fabs(fit.slope * fit.span);
     const double nonlinearity = fit.max_deviation / rise_abs;
     // why: no interval here; the margin is the better of the two ways to say yes, each as a
@@ -350,17 +388,17 @@ Decision claim8(const Sets& sets) {
   }
   const Group smallest = pool(g, {0});
   const Group rest = pool(g, indices(1, size_of(g)));
-  parts.push_back(success_drops(rest, smallest, kSuccessMargin, "very small d_cast fails more"));
+  parts.push_back(success_drops(rest, smallest, r.success_m, r, "very small d_cast fails more"));
   return decide(parts);
 }
 
-Decision claim9(const Sets& sets) {
+Decision claim9(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"I"});
   if (!n.problem.empty()) return unclear_because(n.problem);
   const SetStats& i = *n.sets[0];
   const Group lo = pool(i, lower_half(i)), hi = pool(i, upper_half(i));
   std::vector<Part> parts;
-  parts.push_back(success_drops(lo, hi, kSuccessMargin, "success lower at high sigma_a"));
+  parts.push_back(success_drops(lo, hi, r.success_m, r, "success lower at high sigma_a"));
   // "mainly": the relative drop of the success rate exceeds the relative rise of the overhead
   const Interval drop = scaled(rate_difference(lo.rate, hi.rate), 1.0 / lo.rate.p());
   const Interval rise = relative_difference(hi.overhead, lo.overhead, lo.overhead);
@@ -405,7 +443,7 @@ AlgorithmAtFixed at_fixed(const Sets& sets, std::initializer_list<const char*> s
   return out;
 }
 
-Decision claim10(const Sets& sets) {
+Decision claim10(const Sets& sets, const RuleSet& r) {
   const AlgorithmAtFixed cast = at_fixed(sets, {"A", "B", "C"});
   const AlgorithmAtFixed spiral = at_fixed(sets, {"D", "E", "F"});
   const AlgorithmAtFixed surge = at_fixed(sets, {"G", "H", "I"});
@@ -423,16 +461,18 @@ Decision claim10(const Sets& sets) {
     at.push_back(g->label + " " + describe(g->rate) + ", overhead " + describe(g->overhead));
   }
   // difference in success (first minus second) and relative change in overhead
-  const auto success = [](const Group& a, const Group& b, const std::string& what) {
+  const auto success = [&r](const Group& a, const Group& b, const std::string& what) {
     const Interval d = rate_difference(a.rate, b.rate);
-    return part(directional(d, kSuccessMargin),
-                what + ": " + num(a.rate.p() - b.rate.p()) + " " + interval_text(d));
+    const double point = a.rate.p() - b.rate.p();
+    return part(directional(d, r.success_m, r), what + ": " + num(point) + " " + interval_text(d),
+                figures(point, d, r.success_m));
   };
-  const auto overhead = [](const Group& a, const Group& b, const std::string& what) {
+  const auto overhead = [&r](const Group& a, const Group& b, const std::string& what) {
     const Interval d = relative_difference(a.overhead, b.overhead, b.overhead);
-    return part(directional(d, kMinOverheadEffect),
-                what + ": " + pct(relative_point(a.overhead, b.overhead, b.overhead)) + " " +
-                    pct_interval_text(d));
+    const double point = relative_point(a.overhead, b.overhead, b.overhead);
+    return part(directional(d, r.overhead_m, r),
+                what + ": " + pct(point) + " " + pct_interval_text(d),
+                figures(point, d, r.overhead_m));
   };
   std::vector<Part> parts;
   const std::string &cn = cast.name, &spn = spiral.name, &scn = surge.name;
@@ -442,27 +482,31 @@ Decision claim10(const Sets& sets) {
   parts.push_back(overhead(c, sc, cn + " above " + scn + " in overhead"));
   const Interval ds = rate_difference(sc.rate, sp.rate);
   parts.push_back(
-      part(within(ds, kSuccessMargin), scn + " comparable to " + spn +
-                                           " in success: " + num(sc.rate.p() - sp.rate.p()) + " " +
-                                           interval_text(ds) + " vs +-" + num(kSuccessMargin)));
+      part(within(ds, kSuccessMargin),
+           scn + " comparable to " + spn + " in success: " + num(sc.rate.p() - sp.rate.p()) + " " +
+               interval_text(ds) + " vs +-" + num(kSuccessMargin),
+           figures(sc.rate.p() - sp.rate.p(), ds, kSuccessMargin)));
   const Interval dov = relative_difference(sc.overhead, sp.overhead, sp.overhead);
   parts.push_back(
       part(within(dov, kNegligibleOverhead),
            "in overhead: " + pct(relative_point(sc.overhead, sp.overhead, sp.overhead)) + " " +
-               pct_interval_text(dov) + " vs +-" + margin_pct(kNegligibleOverhead)));
+               pct_interval_text(dov) + " vs +-" + margin_pct(kNegligibleOverhead),
+           figures(relative_point(sc.overhead, sp.overhead, sp.overhead), dov,
+                   kNegligibleOverhead)));
   return decide(parts, "at the fixed values: " + join(at, "; "));
 }
 
 // How much a set's parameter matters: the axis is cut into thirds (lowest, middle and highest
 // values, pooled), and the spreads across the thirds of the success rate and of the mean overhead
-// (relative to the set's pooled mean) are bounded from the thirds' intervals.
+// (relative to the set's pooled mean) are bounded from the thirds' intervals. The importance is
+// the overhead spread (rules 0.4: the paper's "performance") or the larger of the two (0.3.0).
 struct Importance {
   double point = NAN;
   Interval bounds;
   std::string text;
 };
 
-Importance importance(const SetStats& s) {
+Importance importance(const SetStats& s, bool of_overhead) {
   std::vector<double> rates, means;
   std::vector<Interval> rate_cis, mean_cis;
   for (const Group& g : thirds(s)) {
@@ -479,8 +523,17 @@ Importance importance(const SetStats& s) {
   overhead.point /= ref;
   overhead.bounds = scaled(overhead.bounds, 1.0 / ref);
 
-  // the larger of the two spreads; an unknown upper end of either leaves the upper end unknown
   Importance out;
+  if (of_overhead) {
+    // the success spread is reported, not tested
+    out.point = overhead.point;
+    out.bounds = overhead.bounds;
+    out.text = s.name + " " + symbol(s) + ": overhead spread " + pct(overhead.point) + " " +
+               pct_interval_text(overhead.bounds) + " (success spread " + num(success.point) +
+               " " + interval_text(success.bounds) + ", not tested)";
+    return out;
+  }
+  // the larger of the two spreads; an unknown upper end of either leaves the upper end unknown
   out.point = std::fmax(success.point, overhead.point);
   out.bounds.lo = std::fmax(success.bounds.lo, overhead.bounds.lo);
   out.bounds.hi = (std::isnan(success.bounds.hi) || std::isnan(overhead.bounds.hi))
@@ -492,23 +545,26 @@ Importance importance(const SetStats& s) {
   return out;
 }
 
-Decision claim11(const Sets& sets) {
+Decision claim11(const Sets& sets, const RuleSet& r) {
   const Needed n = need(sets, {"A", "B", "D", "E", "G", "H"}, 3);
   if (!n.problem.empty()) return unclear_because(n.problem);
   std::vector<Part> parts;
   // each algorithm's parameter-specific set, then its d_lost set
   for (int a = 0; a < 3; ++a) {
-    const Importance specific = importance(*n.sets[2 * a]);
-    const Importance lost = importance(*n.sets[2 * a + 1]);
+    const Importance specific = importance(*n.sets[2 * a], r.importance_of_overhead);
+    const Importance lost = importance(*n.sets[2 * a + 1], r.importance_of_overhead);
     Test s{Support::kUnclear, in_widths(kMuchLess * specific.bounds.lo - lost.bounds.hi,
                                         width(lost.bounds) + kMuchLess * width(specific.bounds))};
     if (lost.bounds.hi < kMuchLess * specific.bounds.lo) s.support = Support::kYes;
     if (lost.bounds.lo >= kMuchLess * specific.bounds.hi) s.support = Support::kNo;
-    parts.push_back(part(s, n.sets[2 * a]->algorithm + ": " + lost.text + "; importance " +
-                                num(lost.point) + " " + interval_text(lost.bounds) + " vs " +
-                                specific.text + "; importance " + num(specific.point) + " " +
-                                interval_text(specific.bounds) + "; needs < " + num(kMuchLess) +
-                                " x"));
+    // the figures: d_lost's importance against half the algorithm's own parameter's
+    parts.push_back(part(s,
+                         n.sets[2 * a]->algorithm + ": " + lost.text + "; importance " +
+                             num(lost.point) + " " + interval_text(lost.bounds) + " vs " +
+                             specific.text + "; importance " + num(specific.point) + " " +
+                             interval_text(specific.bounds) + "; needs < " + num(kMuchLess) +
+                             " x",
+                         figures(lost.point, lost.bounds, kMuchLess * specific.point)));
   }
   return decide(parts);
 }
@@ -516,7 +572,7 @@ Decision claim11(const Sets& sets) {
 struct ClaimDef {
   int id;
   const char* text;
-  Decision (*decide)(const Sets&);
+  Decision (*decide)(const Sets&, const RuleSet&);
 };
 
 constexpr ClaimDef kClaims[] = {
@@ -560,12 +616,21 @@ std::string_view verdict_name(Verdict v) {
   return "unclear";
 }
 
-std::vector<ClaimResult> evaluate_claims(const std::map<std::string, SetStats>& sets) {
+std::string_view rules_name(ClaimRules rules) {
+  return rules == ClaimRules::kRules030 ? "0.3.0" : "0.4";
+}
+
+std::vector<ClaimResult> evaluate_claims(const std::map<std::string, SetStats>& sets,
+                                         ClaimRules rules) {
   std::vector<ClaimResult> out;
+  const RuleSet& r = rule_set(rules);
   for (const ClaimDef& c : kClaims) {
-    const Decision d = c.decide(sets);
+    const Decision d = c.decide(sets, r);
     std::vector<ClaimPart> parts;
-    for (const Part& p : d.parts) parts.push_back({p.text, verdict_of(p.support), p.margin});
+    for (const Part& p : d.parts) {
+      parts.push_back({p.text, verdict_of(p.support), p.margin, p.figures.estimate,
+                       p.figures.interval.lo, p.figures.interval.hi, p.figures.threshold});
+    }
     out.push_back({c.id, c.text, verdict_of(d.support), d.evidence, parts, d.margin});
   }
   return out;

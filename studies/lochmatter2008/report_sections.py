@@ -10,7 +10,7 @@ from typing import Any, Optional
 
 from plumetrace.report.data import (DASH, SENSITIVITY_NAME, Point, SweepSet, _centreline,
                                     _elapsed_text, _fixed_points, _held, _int, _is_number, _num,
-                                    _readings, _sensitivity_grid, _verdict_counts, fmt_count,
+                                    _old_rules, _readings, _rules_name, _sensitivity_grid, _verdict_counts, fmt_count,
                                     fmt_duration, fmt_median, fmt_oh, fmt_outcomes, fmt_overhead,
                                     fmt_pct, fmt_rate, fmt_raw_int, fmt_value, poisson_interval,
                                     verdict_style)
@@ -90,6 +90,37 @@ def report_title(summary: dict) -> str:
             f"{main.get('name')} reading")
 
 
+def _old_verdicts(entry: dict) -> dict:
+    """{claim id: verdict} under rules 0.3.0 of a reading, axis reading or summary; empty when
+    the summary has none."""
+    old = _old_rules(entry) or {}
+    return {_int(c.get("id")): c.get("verdict") for c in old.get("claims") or []}
+
+
+def _old_held(entry: dict) -> Optional[int]:
+    """Claims that hold under rules 0.3.0; None when the summary has no such verdicts."""
+    old = _old_verdicts(entry)
+    return sum(v == "holds" for v in old.values()) if old else None
+
+
+def _rules_sentence(summary: dict, main: dict, out_dir: Path) -> list:
+    """Which rules decided, and what rules 0.3.0 decide on the same data, naming the claims whose
+    verdict differs (docs/claims.md, "Two rule sets")."""
+    old = _old_verdicts(main)
+    if not old:
+        return [f" Rules {_rules_name(summary)} of ", _doc_link(out_dir, "docs/claims.md"), "."]
+    new = {_int(c.get("id")): c.get("verdict") for c in main.get("claims") or []}
+    differ = [f"{cid} ({new.get(cid)}; under 0.3.0 {old[cid]})" for cid in sorted(old)
+              if cid is not None and old[cid] != new.get(cid)]
+    held = _old_held(main)
+    return [f" These are the verdicts of rules {_rules_name(summary)} (",
+            _doc_link(out_dir, "docs/claims.md"), ", “Rules 0.4: rules that converge”); "
+            f"rules 0.3.0, as first written, decide the same runs with "
+            f"{counted(held, len(old), 'claim', 'claims')} holding"
+            + (", and differ on claim" + ("s " if len(differ) > 1 else " ") + "; ".join(differ)
+               if differ else ", every verdict the same") + "."]
+
+
 def _header_blocks(summary: dict, out_dir: Path) -> list:
     claims = summary.get("claims") or []
     counts = _verdict_counts(claims)
@@ -130,22 +161,26 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
     blocks = [Para([("b", f"Under the {main.get('name')} reading, "
                           f"{counted(held, n, 'claim', 'claims')} {verb(held, 'holds', 'hold')}"),
                     f", {no} {verb(no, 'does', 'do')} not hold and {unclear} "
-                    f"{verb(unclear, 'is', 'are')} unclear, at {runs} runs per value. ",
-                    "A reading fixes what the paper leaves unsaid or prints inconsistently "
+                    f"{verb(unclear, 'is', 'are')} unclear, at {runs} runs per value."]
+                   + _rules_sentence(summary, main, out_dir) + [
+                    " A reading fixes what the paper leaves unsaid or prints inconsistently "
                     "(the amount per filament, the plume's noise and kernel, the success "
                     "radius, ...); each is listed with its evidence in ",
                     _doc_link(out_dir, "docs/fidelity.md"), ". The model: ",
                     _doc_link(out_dir, "docs/model.md"), "; how each claim is tested: ",
                     _doc_link(out_dir, "docs/claims.md"), "."])]
     rows = []
+    with_old = all(_old_rules(r) is not None for r in readings)
     for r in readings:
         h, d, u, total = _held(r)
         rows.append([Cell(r.get("name") + (" (main)" if r.get("main") else ""), cls="key"),
                      Cell(str(r.get("file") or "built-in defaults"), cls="mono"),
                      Cell(str(h), cls="holds", num=True), Cell(str(d), cls="fails", num=True),
-                     Cell(str(u), cls="unclear", num=True), Cell(str(total), num=True)])
+                     Cell(str(u), cls="unclear", num=True), Cell(str(total), num=True)]
+                    + ([Cell(str(_old_held(r)), num=True)] if with_old else []))
     blocks.append(Table(header=["reading", "preset file", "hold", "do not hold", "unclear",
-                                "claims"], rows=rows))
+                                "claims"] + (["hold under rules 0.3.0"] if with_old else []),
+                        rows=rows))
 
     sentence = failure_sentence(summary)
     if sentence:
@@ -165,6 +200,7 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
     claim_rows = []
     main_claims = {_int(c.get("id")): c for c in main.get("claims") or []}
     by_reading = [{_int(c.get("id")): c for c in r.get("claims") or []} for r in readings]
+    old = _old_verdicts(main)
     for cid in sorted(i for i in main_claims if i is not None):
         c = main_claims[cid]
         row = [Cell(str(cid), num=True),
@@ -173,6 +209,9 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
             v = (claims.get(cid) or {}).get("verdict")
             cls, _, symbol = verdict_style(v)
             row.append(Cell(symbol, cls=f"cell {cls}", title=v or DASH))
+        if old:
+            cls, _, symbol = verdict_style(old.get(cid))
+            row.append(Cell(symbol, cls=f"cell {cls}", title=old.get(cid) or DASH))
         row.append(Cell(short_figure(c), cls="mono"))
         claim_rows.append(row)
     if claim_rows:
@@ -182,6 +221,7 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
                             "verdict. The full evidence is under ",
                             ("a", "the claims", "#claims"), "."]))
         blocks.append(Table(header=["id", "the paper says"] + [r.get("name") for r in readings]
+                            + ([f"{main.get('name')}, rules 0.3.0"] if old else [])
                             + [f"what the data say ({main.get('name')})"], rows=claim_rows))
     changes = what_would_change(summary)
     if changes:
@@ -400,15 +440,18 @@ def _axes_section(out_dir: Path, summary: dict) -> Section:
                     "evidence, never by the claims it moves: ",
                     _doc_link(out_dir, "docs/fidelity.md"), ", \u201cThe axes\u201d."])]
     rows = []
+    with_old = all(_old_rules(a) is not None for a in axes)
     for a in axes:
         changed = ", ".join(s.get("set", "?") for s in a.get("sets") or []) or DASH
         rows.append([Cell(a.get("name") or DASH, cls="key"), Cell(a.get("title") or DASH),
                      Cell(changed, cls="mono"), Cell(str(_int(a.get("held")) or 0), cls="holds",
                                                      num=True),
                      Cell(str(_int(a.get("not_held")) or 0), cls="fails", num=True),
-                     Cell(str(_int(a.get("unclear")) or 0), cls="unclear", num=True)])
+                     Cell(str(_int(a.get("unclear")) or 0), cls="unclear", num=True)]
+                    + ([Cell(str(_old_held(a)), num=True)] if with_old else []))
     blocks.append(Table(header=["axes", "what they are", "sets changed", "hold", "do not hold",
-                                "unclear"], rows=rows))
+                                "unclear"] + (["hold under rules 0.3.0"] if with_old else []),
+                        rows=rows))
 
     # the captions' evidence: the paper's Figs. 7-9 draw every bar but set C's last ("The last
     # bar is omitted because of the small number of successful runs"); which bars would each axis
@@ -815,21 +858,34 @@ def _claims_section(out_dir: Path, summary: dict) -> Section:
     if not claims:
         return Section("claims", "The paper's claims", [Para(["This summary has no claims."])])
     rows = []
+    old = {_int(c.get("id")): c for c in (_old_rules(summary) or {}).get("claims") or []}
     for cl in claims:
         cls, _, symbol = verdict_style(cl.get("verdict"))
-        rows.append([Cell(fmt_count(_int(cl.get("id"))) if _is_number(cl.get("id"))
-                          else str(cl.get("id", DASH)), num=True),
-                     cl.get("text") or "",
-                     Cell(f"{symbol} {cl.get('verdict')}", cls=f"verdict {cls}"),
-                     cl.get("evidence") or DASH])
+        row = [Cell(fmt_count(_int(cl.get("id"))) if _is_number(cl.get("id"))
+                    else str(cl.get("id", DASH)), num=True),
+               cl.get("text") or "",
+               Cell(f"{symbol} {cl.get('verdict')}", cls=f"verdict {cls}"),
+               cl.get("evidence") or DASH]
+        if old:
+            o = old.get(_int(cl.get("id"))) or {}
+            ocls, _, osym = verdict_style(o.get("verdict"))
+            # the old evidence only where it decides otherwise
+            row.append(Cell(f"{osym} {o.get('verdict') or DASH}"
+                            + (": " + (o.get("evidence") or DASH)
+                               if o.get("verdict") != cl.get("verdict") else ""),
+                            cls=f"verdict {ocls}"))
+        rows.append(row)
     return Section("claims", f"The claims and their evidence ({summary.get('preset') or 'main'} "
                    "reading)", [
         Para(["Each claim of the paper's section 4, as ", _doc_link(out_dir, "docs/claims.md"),
               " states it, checked against the sets above, never tuned to pass; the rules are "
               "in the same document. Verdicts: holds (green), does not hold "
               "(red), unclear (amber). The verdicts of the other readings are under ",
-              ("a", "What was found", "#verdict"), "."]),
-        Table(header=["id", "claim", "verdict", "evidence"], rows=rows),
+              ("a", "What was found", "#verdict"), f". Rules {_rules_name(summary)} decide"]
+             + ([": the last column is the verdict of rules 0.3.0 on the same runs, with its "
+                 "evidence where it differs."] if old else ["."])),
+        Table(header=["id", "claim", f"verdict (rules {_rules_name(summary)})", "evidence"]
+              + (["rules 0.3.0"] if old else []), rows=rows),
     ])
 
 

@@ -272,13 +272,50 @@ json sweep_definition_json(const SweepDef& def) {
           {"seed", def.seed}};
 }
 
-// a claim as JSON: id, text, verdict, margin and evidence
+// a claim as JSON: id, text, verdict, margin, evidence and its parts' figures
 json claim_json(const ClaimResult& c) {
+  json parts = json::array();
+  for (const ClaimPart& p : c.parts) {
+    parts.push_back({{"support", p.support == Verdict::kHolds         ? "yes"
+                                 : p.support == Verdict::kDoesNotHold ? "no"
+                                                                      : "unclear"},
+                     {"margin", number_or_null(p.margin)},
+                     {"estimate", number_or_null(p.estimate)},
+                     {"lo", number_or_null(p.lo)},
+                     {"hi", number_or_null(p.hi)},
+                     {"threshold", number_or_null(p.threshold)},
+                     {"text", p.text}});
+  }
   return {{"id", c.id},
           {"text", c.text},
           {"verdict", std::string(verdict_name(c.verdict))},
           {"margin", number_or_null(c.margin)},
-          {"evidence", c.evidence}};
+          {"evidence", c.evidence},
+          {"parts", parts}};
+}
+
+// The verdicts of the sets under one rule set: "claims", "held", "not_held", "unclear".
+json verdicts_json(const std::map<std::string, SetStats>& sets, ClaimRules rules) {
+  json claims = json::array();
+  int held = 0, not_held = 0, unclear = 0;
+  for (const auto& c : evaluate_claims(sets, rules)) {
+    claims.push_back(claim_json(c));
+    held += c.verdict == Verdict::kHolds;
+    not_held += c.verdict == Verdict::kDoesNotHold;
+    unclear += c.verdict == Verdict::kUnclear;
+  }
+  return {{"held", held}, {"not_held", not_held}, {"unclear", unclear}, {"claims", claims}};
+}
+
+// Adds the verdicts under the default rules ("rules", "claims" and the counts) and those under
+// rules 0.3.0 beside them ("rules_030"), so that no change of rule hides a change of verdict
+// (docs/claims.md, "Two rule sets").
+void add_verdicts(json& doc, const std::map<std::string, SetStats>& sets) {
+  doc["rules"] = std::string(rules_name(kDefaultRules));
+  doc.update(verdicts_json(sets, kDefaultRules));
+  json old = verdicts_json(sets, ClaimRules::kRules030);
+  old["rules"] = std::string(rules_name(ClaimRules::kRules030));
+  doc["rules_030"] = std::move(old);
 }
 
 // one reading: its settings, claims, fixed-value statistics and detection map (maps are shared
@@ -326,25 +363,14 @@ json reading_json(const Reading& reading, bool main, const std::vector<ExpandedS
       fixed.push_back(p);
     }
   }
-  json claims = json::array();
-  int held = 0, not_held = 0, unclear = 0;
-  for (const auto& c : evaluate_claims(by_name)) {
-    claims.push_back(claim_json(c));
-    held += c.verdict == Verdict::kHolds;
-    not_held += c.verdict == Verdict::kDoesNotHold;
-    unclear += c.verdict == Verdict::kUnclear;
-  }
   json doc{{"name", reading.name},
            {"main", main},
            {"file", reading.file.empty()
                         ? json(nullptr)
                         : json(std::filesystem::path(reading.file).filename().string())},
            {"settings", settings},
-           {"held", held},
-           {"not_held", not_held},
-           {"unclear", unclear},
-           {"claims", claims},
            {"fixed", fixed}};
+  add_verdicts(doc, by_name);
   if (const ExpandedSweep* a = first_set(sweeps, info, reading.name, main)) {
     const Scenario& sc = a->points.at(0).scenario;
     const std::string key = plume_key(sc) + "|" + format_number(sc.odor.height);
@@ -386,24 +412,14 @@ json axis_reading_json(const AxisReading& axes, const std::vector<ExpandedSweep>
     }
     by_name[set] = std::move(st);
   }
-  json claims = json::array();
-  int held = 0, not_held = 0, unclear = 0;
-  for (const auto& c : evaluate_claims(by_name)) {
-    claims.push_back(claim_json(c));
-    held += c.verdict == Verdict::kHolds;
-    not_held += c.verdict == Verdict::kDoesNotHold;
-    unclear += c.verdict == Verdict::kUnclear;
-  }
-  return {{"name", axes.name},
-          {"title", axes.title},
-          {"file", axes.file.empty()
-                       ? json(nullptr)
-                       : json(std::filesystem::path(axes.file).filename().string())},
-          {"sets", changed},
-          {"held", held},
-          {"not_held", not_held},
-          {"unclear", unclear},
-          {"claims", claims}};
+  json doc{{"name", axes.name},
+            {"title", axes.title},
+            {"file", axes.file.empty()
+                         ? json(nullptr)
+                         : json(std::filesystem::path(axes.file).filename().string())},
+            {"sets", changed}};
+  add_verdicts(doc, by_name);
+  return doc;
 }
 
 }  // namespace
@@ -475,9 +491,15 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
     by_name[name] = st;
   }
   doc["sets"] = sets;
-  json claims = json::array();
-  for (const auto& c : evaluate_claims(by_name)) claims.push_back(claim_json(c));
-  doc["claims"] = claims;
+  {
+    // the main reading's verdicts under both rule sets; the counts are the readings'
+    json verdicts;
+    add_verdicts(verdicts, by_name);
+    doc["rules"] = verdicts["rules"];
+    doc["claims"] = verdicts["claims"];
+    doc["rules_030"] = {{"rules", verdicts["rules_030"]["rules"]},
+                        {"claims", verdicts["rules_030"]["claims"]}};
+  }
 
   // the three algorithms at their fixed values under other success radii
   json variants = json::array(), sens_rows = json::array();
@@ -646,6 +668,7 @@ std::string sensitivity_json(const SensitivityMatrix& matrix, int runs, double e
               {"version", std::string(version())},
               {"runs_per_point", runs},
               {"elapsed_s", elapsed},
+              {"rules", std::string(rules_name(kDefaultRules))},
               {"claims", claims},
               {"rows", out_rows}}
       .dump(1);
@@ -663,7 +686,7 @@ std::string sensitivity_markdown(const SensitivityMatrix& matrix, int runs, doub
      << "Each row reruns the nine experiment sets (docs/experiments.md) with " << runs
      << " runs per value under one combination of " << names
      << " (docs/experiments.md, `plumetrace sensitivity`). Cells: H holds, - does not hold, "
-        "? unclear (rules in docs/claims.md). Computed in "
+        "? unclear (rules " << rules_name(kDefaultRules) << " in docs/claims.md). Computed in "
      << static_cast<long>(elapsed) << " s.\n\n|";
   for (const auto& axis : matrix.axes) {
     std::string name = short_key(axis.key);

@@ -43,15 +43,25 @@ struct Test {
   double margin = NAN;                  ///< signed distance from the threshold, in widths
 };
 
+/// The numbers a part was decided on (docs/claims.md, "Every verdict carries its effect and
+/// interval"): the quantity tested, its 95% interval and the threshold the test held it against;
+/// NaN where a test has no such number (claim 8's linearity has no interval).
+struct Figures {
+  double estimate = NAN;  ///< the point estimate of the tested quantity
+  Interval interval;      ///< its 95% interval
+  double threshold = NAN;  ///< the threshold (m, M or L) it was held against
+};
+
 /// One tested part: a test's outcome and the figures that decided it.
 struct Part {
   Support support = Support::kUnclear;  ///< the test's support
   double margin = NAN;                  ///< the test's margin
   std::string text;  ///< the figures, ending in " -> yes", " -> no", " -> unclear"
+  Figures figures;   ///< the same figures as numbers
 };
 
 /// A part from a test and its figures; the support's name is appended ("... -> yes").
-Part part(const Test& test, const std::string& text);
+Part part(const Test& test, const std::string& text, const Figures& figures = {});
 
 // --- the tests
 

@@ -169,29 +169,14 @@ def render(study, opt, validation, evaluated_now=0):
         out.append("<p>Fixed for every candidate: " + ", ".join(
             f"<code>{e(k)} = {e(_fmt(x))}</code>" for k, x in study.fixed.items()) + ".</p>")
 
-    # the claims per validated candidate
+    # the claims per validated candidate, at validation and at the confirming run count
     out.append(f"<h2>Claims at validation ({v['runs']} runs per value, seed {v['seed']})</h2>")
-    head = "".join(f"<th>trial {c['trial']}{' (best)' if c is best else ''}<br>"
-                   f"<small>score {c['score']:+.4g}</small></th>" for c in cands)
-    out.append(f"<table><tr><th>claim</th><th>role</th>{head}<th>evidence (best)</th></tr>")
-    by_cand = [{c["id"]: c for c in cand["claims"]} for cand in cands]
-    ids = sorted({i for m in by_cand for i in m})
-    for cid in ids:
-        role = "calibration (scored)" if cid in CALIBRATION_CLAIMS else "held out"
-        cells = ""
-        for m in by_cand:
-            c = m.get(cid)
-            if c is None:
-                cells += "<td>-</td>"
-                continue
-            cls = c["verdict"].replace(" ", "-")
-            cells += f"<td class='{cls}'>{e(c['verdict'])}<br><small>margin " \
-                     f"{_margin(c.get('margin'))}</small></td>"
-        bc = {c["id"]: c for c in best["claims"]}.get(cid, {})
-        text = e(bc.get("text", ""))
-        out.append(f"<tr><td>{cid}<br><small>{text}</small></td><td class='role'>{role}</td>"
-                   f"{cells}<td><small>{e(bc.get('evidence', ''))}</small></td></tr>")
-    out.append("</table>")
+    out += _claims_table(cands, best, [c["claims"] for c in cands])
+    confirmed = [c.get("confirm") for c in cands]
+    if all(confirmed):
+        out.append(f"<h2>Claims at {confirmed[0]['runs']} runs per value (the same seed "
+                   f"{v['seed']})</h2>")
+        out += _claims_table(cands, best, [c["claims"] for c in confirmed])
 
     # which unknowns matter
     out.append("<h2>Which unknowns matter</h2>")
@@ -217,6 +202,34 @@ def render(study, opt, validation, evaluated_now=0):
                f"<code>validation.json</code>. Score and format: docs/calibration.md. Drawn "
                f"{time.strftime('%Y-%m-%d %H:%M')}.</small></p></body></html>")
     return "\n".join(out)
+
+
+def _claims_table(cands, best, claims_of):
+    """The verdict and margin of each claim under each candidate (`claims_of`: a list of claims
+    per candidate), with the best candidate's evidence."""
+    e = html.escape
+    head = "".join(f"<th>trial {c['trial']}{' (best)' if c is best else ''}<br>"
+                   f"<small>score {c['score']:+.4g}</small></th>" for c in cands)
+    out = [f"<table><tr><th>claim</th><th>role</th>{head}<th>evidence (best)</th></tr>"]
+    by_cand = [{c["id"]: c for c in claims} for claims in claims_of]
+    best_claims = by_cand[cands.index(best)]
+    for cid in sorted({i for m in by_cand for i in m}):
+        role = "calibration (scored)" if cid in CALIBRATION_CLAIMS else "held out"
+        cells = ""
+        for m in by_cand:
+            c = m.get(cid)
+            if c is None:
+                cells += "<td>-</td>"
+                continue
+            cls = c["verdict"].replace(" ", "-")
+            cells += f"<td class='{cls}'>{e(c['verdict'])}<br><small>margin " \
+                     f"{_margin(c.get('margin'))}</small></td>"
+        bc = best_claims.get(cid, {})
+        out.append(f"<tr><td>{cid}<br><small>{e(bc.get('text', ''))}</small></td>"
+                   f"<td class='role'>{role}</td>{cells}<td><small>"
+                   f"{e(bc.get('evidence', ''))}</small></td></tr>")
+    out.append("</table>")
+    return out
 
 
 def write_report(study, opt, validation, out_dir, evaluated_now=0):

@@ -297,6 +297,14 @@ def claim_role(cid):
     return "calibration" if cid in CALIBRATION_CLAIMS else "held-out"
 
 
+def _holds(claims):
+    """The calibration and held-out claims that hold, counted."""
+    return {"calibration_holds": sum(c["verdict"] == "holds" for c in claims
+                                     if c["id"] in CALIBRATION_CLAIMS),
+            "held_out_holds": sum(c["verdict"] == "holds" for c in claims
+                                  if c["id"] in HELD_OUT_CLAIMS)}
+
+
 def validate(study, opt, out_dir, progress=False):
     """Reruns the best `validation.top` candidates at `validation.runs` per value with the fresh
     `validation.seed` and evaluates every claim (the held-out ones only here); the best reading
@@ -310,6 +318,8 @@ def validate(study, opt, out_dir, progress=False):
         raise StudyError("no completed trial to validate")
     plan = {"trials": [t.number for t in chosen], "runs": v.runs, "seed": v.seed,
             "definition": study_definition(study)}
+    if v.confirm_runs:
+        plan["confirm_runs"] = v.confirm_runs
     if out_path.exists():
         try:
             old = json.loads(read_input(out_path, "validation file"))
@@ -328,20 +338,27 @@ def validate(study, opt, out_dir, progress=False):
         result = evaluate(study, settings, v.runs, v.seed, [])
         score, extra = target.score(result, v.runs, v.seed)
         claims = [dict(c, role=claim_role(c["id"])) for c in result["claims"]]
-        candidates.append(_clean({
+        candidate = {
             "trial": t.number, "params": t.params, "settings": settings,
             "search_score": t.value, "score": score, **extra,
-            "claims": claims,
-            "calibration_holds": sum(c["verdict"] == "holds" for c in claims
-                                     if c["id"] in CALIBRATION_CLAIMS),
-            "held_out_holds": sum(c["verdict"] == "holds" for c in claims
-                                  if c["id"] in HELD_OUT_CLAIMS),
+            "claims": claims, **_holds(claims),
             "sets": result["sets"], "runs": result["runs"],
-            "elapsed": time.monotonic() - start}))
+            "elapsed": time.monotonic() - start}
+        if v.confirm_runs:
+            # the same candidate at more runs and the same fresh seed: its verdicts beside
+            if progress:
+                sys.stderr.write(f"confirming candidate {i + 1}/{len(chosen)} (trial {t.number}) "
+                                 f"at {v.confirm_runs} runs per value\n")
+            more = evaluate(study, settings, v.confirm_runs, v.seed, [])
+            more_claims = [dict(c, role=claim_role(c["id"])) for c in more["claims"]]
+            candidate["confirm"] = {"runs": v.confirm_runs, "claims": more_claims,
+                                    **_holds(more_claims)}
+        candidates.append(_clean(candidate))
     best = max(range(len(candidates)),
                key=lambda i: (candidates[i]["score"], candidates[i]["search_score"], -i))
     doc = {"plan": plan, "study": str(study.path), "target": study.target,
-           "validation": {"top": v.top, "runs": v.runs, "seed": v.seed},
+           "validation": {"top": v.top, "runs": v.runs, "seed": v.seed,
+                          "confirm_runs": v.confirm_runs},
            "candidates": candidates, "best": best}
     write_whole(out_path, json.dumps(doc, indent=1))
     return doc

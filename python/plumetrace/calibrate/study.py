@@ -61,6 +61,7 @@ class Validation:
     top: int = 3
     runs: int = 50
     seed: int = 0
+    confirm_runs: int = 0  # a second validation at more runs, same seed (0: none)
 
 
 @dataclass

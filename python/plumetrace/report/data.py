@@ -193,6 +193,12 @@ def _check_summary(data: Any, path: Path) -> dict:
         c.text(cl.get("text"), f"{where}.text")
         c.text(cl.get("verdict"), f"{where}.verdict")
         c.text(cl.get("evidence"), f"{where}.evidence", nullable=True)
+    if data.get("rules_030") is not None:
+        _check_old_rules(c, data["rules_030"], "rules_030")
+    for i, a in enumerate(c.lst(data.get("axis_readings") or [], "axis_readings")):
+        c.obj(a, f"axis_readings[{i}]")
+        if a.get("rules_030") is not None:
+            _check_old_rules(c, a["rules_030"], f"axis_readings[{i}].rules_030")
 
     sens = data.get("sensitivity")
     if sens is not None:
@@ -241,6 +247,8 @@ def _check_summary(data: Any, path: Path) -> dict:
         for j, cl in enumerate(c.lst(r.get("claims") or [], f"{where}.claims")):
             c.obj(cl, f"{where}.claims[{j}]")
             c.text(cl.get("verdict"), f"{where}.claims[{j}].verdict")
+        if r.get("rules_030") is not None:
+            _check_old_rules(c, r["rules_030"], f"{where}.rules_030")
         for j, p in enumerate(c.lst(r.get("fixed") or [], f"{where}.fixed")):
             _check_point(c, p, f"{where}.fixed[{j}]", need_value=False)
             c.text(p.get("algorithm"), f"{where}.fixed[{j}].algorithm")
@@ -267,6 +275,17 @@ def _check_summary(data: Any, path: Path) -> dict:
 FAILURE_NUMBERS = ("runs", "failed", "walls", "timeouts", "gave_up", "examined", "end_upwind",
                    "end_upwind_wall", "end_within_1m", "passed_source", "came_within_0_5m",
                    "closest_median_m", "end_distance_median_m")
+
+
+def _check_old_rules(c: "_Checker", old: Any, where: str) -> None:
+    """The verdicts under rules 0.3.0 beside a reading's."""
+    c.obj(old, where)
+    for key in ("held", "not_held", "unclear"):
+        if old.get(key) is not None:
+            c.num(old.get(key), f"{where}.{key}")
+    for j, cl in enumerate(c.lst(old.get("claims") or [], f"{where}.claims")):
+        c.obj(cl, f"{where}.claims[{j}]")
+        c.text(cl.get("verdict"), f"{where}.claims[{j}].verdict")
 
 
 def _check_map(c: "_Checker", dmap: Any, where: str) -> None:
@@ -461,6 +480,8 @@ def _readings(summary: dict) -> list:
         readings = [{"name": summary.get("preset") or "main", "main": True, "claims": claims,
                      "held": counts["holds"], "not_held": counts["does not hold"],
                      "unclear": counts["unclear"]}]
+        if summary.get("rules_030") is not None:
+            readings[0]["rules_030"] = summary["rules_030"]
     readings.sort(key=lambda r: not r.get("main"))
     return readings
 
@@ -501,6 +522,19 @@ def _held(reading: dict) -> tuple:
     held = _int(reading.get("held"))
     return (counts["holds"] if held is None else held, counts["does not hold"],
             counts["unclear"], len(claims))
+
+
+def _old_rules(entry: dict) -> Optional[dict]:
+    """The verdicts of a reading (or axis reading, or summary) under rules 0.3.0, computed beside
+    the rules in force (docs/claims.md, "Two rule sets"); None in a summary without them."""
+    old = entry.get("rules_030")
+    return old if isinstance(old, dict) and isinstance(old.get("claims"), list) else None
+
+
+def _rules_name(summary: dict) -> str:
+    """The rules the summary's verdicts use: "0.4", or "0.3.0" for a summary written before
+    rules had names."""
+    return str(summary.get("rules") or "0.3.0")
 
 
 def _fixed_points(reading: dict) -> dict:

@@ -676,3 +676,33 @@ def test_what_would_change_names_the_deciding_part_and_where_the_claim_holds():
     assert changes[7].startswith("it is unclear on drop 0.07 [0.04, 0.11] -> unclear.")
     assert "raises" not in changes[7]  # a supported part decides nothing
     assert changes[7].endswith("It holds under the narrow axes (a narrower axis).")
+
+
+def test_what_would_change_words_structured_parts_and_claim_2s_assumed_level():
+    # parts with figures (summary.json's `parts`) are worded from their numbers; claim 2's
+    # verdict is said to hinge on the assumed level 0.80, with the levels the data would allow
+    def part(support, text, est, lo, hi, threshold):
+        return {"support": support, "text": text, "estimate": est, "lo": lo, "hi": hi,
+                "threshold": threshold}
+
+    def summary(best_hi):
+        claim2 = {"id": 2, "verdict": "unclear", "evidence": "", "parts": [
+            part("yes", "success lower at small beta: ...", 0.08, 0.003, 0.16, 0.0),
+            part("unclear", "beta > 20 acceptable: A ...", 0.788, 0.733, 0.834, 0.8),
+            part("unclear", "no beta <= 20 acceptable: best ...", 0.70, 0.60, best_hi, 0.8)]}
+        claim5 = {"id": 5, "verdict": "unclear", "evidence": "", "parts": [
+            part("unclear", "overhead lower at small d_gap: D ...", 0.008, -0.004, 0.02, 0.0)]}
+        return {"readings": [{"name": "default", "main": True, "claims": [claim2, claim5]}]}
+
+    changes = dict(report_sections.what_would_change(summary(0.944)))
+    assert changes[5].startswith("it is unclear on overhead lower at small d_gap: +0.008 "
+                                 "[-0.004, +0.020] against 0 -> unclear.")
+    assert changes[2].startswith("it is unclear on beta > 20 acceptable: 0.788 [0.733, 0.834] "
+                                 "against 0.8 -> unclear; no beta <= 20 acceptable: 0.700 "
+                                 "[0.600, 0.944] against 0.8 -> unclear.")
+    assert "success lower" not in changes[2]
+    assert changes[2].endswith("beta > 20 is acceptable at any level up to 0.733, and no "
+                               "beta <= 20 at any level above 0.944, so no level makes both "
+                               "hold.")
+    changes = dict(report_sections.what_would_change(summary(0.70)))
+    assert changes[2].endswith("so a level between 0.700 and 0.733 would make both hold.")

@@ -234,10 +234,55 @@ def _verdict_section(out_dir: Path, fig_dir: Path, summary: dict, written: list)
     return Section("verdict", "What was found", blocks)
 
 
+def _part_words(part: dict) -> str:
+    """One part in a few words: its label (the text before the first colon), its estimate and 95%
+    interval against its threshold, and its support; the text's last clause when the part has no
+    interval (claim 3's patterns, claim 8's linearity, claim 9's "mainly")."""
+    text = (part.get("text") or "").strip()
+    support = part.get("support") or "unclear"
+    figures = [_num(part.get(k)) for k in ("estimate", "lo", "hi", "threshold")]
+    if all(f is not None for f in figures):
+        est, lo, hi, threshold = figures
+        label = text.split(": ", 1)[0] if ": " in text[:80] else "the part"
+        # differences signed, levels (a success rate against 0.95, say) not
+        sign = "+" if threshold == 0 or lo < 0 else ""
+        return (f"{label}: {est:{sign}.3f} [{lo:{sign}.3f}, {hi:{sign}.3f}] against "
+                f"{threshold:.3g} -> {support}")
+    return text.split("; ")[-1] if len(text) > 160 else text
+
+
 def _deciding_parts(claim: dict) -> list:
-    """The parts of a claim's evidence that keep it from holding (those not ending in "-> yes")."""
+    """The parts of a claim's evidence that keep it from holding (those not supported), in a few
+    words each; from the evidence string when the summary has no structured parts."""
+    parts = claim.get("parts")
+    if isinstance(parts, list) and parts:
+        return [_part_words(p) for p in parts
+                if isinstance(p, dict) and p.get("support") in ("no", "unclear")]
     parts = [p.strip() for p in (claim.get("evidence") or "").split("; ") if p.strip()]
     return [p for p in parts if p.endswith("-> no") or p.endswith("-> unclear")]
+
+
+# claim 2's "acceptable" success rate: the rules' assumption, the paper gives no number
+# (docs/claims.md, "What stays, and why")
+ACCEPTABLE = 0.80
+
+
+def _acceptable_level(claim: dict) -> Optional[str]:
+    """For claim 2, when its verdict hinges on the assumed "acceptable" level: the levels at which
+    each of its two level parts would be supported, from their intervals."""
+    parts = [p for p in claim.get("parts") or [] if isinstance(p, dict)
+             and _num(p.get("threshold")) == ACCEPTABLE and _num(p.get("lo")) is not None
+             and _num(p.get("hi")) is not None]
+    if len(parts) != 2 or all(p.get("support") == "yes" for p in parts):
+        return None
+    # part 3 (beta > 20 acceptable) holds for a level up to its lower end; part 4 (no beta <= 20
+    # acceptable) for a level above the best small angle's upper end
+    upper, lower = _num(parts[0].get("lo")), _num(parts[1].get("hi"))
+    both = (f"a level between {lower:.3f} and {upper:.3f} would make both hold" if lower < upper
+            else "no level makes both hold")
+    return (f"It hinges on the \u201cacceptable\u201d level {ACCEPTABLE:.2f}, an assumption of "
+            f"the rules (the paper gives no number): beta > 20 is acceptable at any level up to "
+            f"{upper:.3f}, and no beta <= 20 at any level above {lower:.3f}, so {both}")
 
 
 def what_would_change(summary: dict) -> list:
@@ -273,6 +318,9 @@ def what_would_change(summary: dict) -> list:
                 holds_under.append(f"the {a.get('name')} axes ({a.get('title')})")
         text += (". It holds under " + " and under ".join(holds_under) if holds_under
                  else ". It holds under no other reading or axis reading run here")
+        level = _acceptable_level(claim) if cid == 2 else None
+        if level:
+            text += ". " + level
         out.append((cid, text + "."))
     return out
 

@@ -328,11 +328,17 @@ def what_would_change(summary: dict) -> list:
 def short_figure(claim: dict) -> str:
     """The evidence part that decided the verdict: the first contradicted part of a claim that
     does not hold, the first unclear part of an unclear one, else the first part."""
+    want = {"does not hold": "-> no", "unclear": "-> unclear"}.get(
+        (claim.get("verdict") or "").strip().lower())
+    structured = [p for p in claim.get("parts") or [] if isinstance(p, dict)]
+    if structured and want:
+        chosen = next((p for p in structured if "-> " + str(p.get("support")) == want), None)
+        if chosen is not None:
+            words = _part_words(chosen)
+            return words[: -len(want)].rstrip() if words.endswith(want) else words
     parts = [p.strip() for p in (claim.get("evidence") or "").split("; ") if p.strip()]
     if not parts:
         return DASH
-    want = {"does not hold": "-> no", "unclear": "-> unclear"}.get(
-        (claim.get("verdict") or "").strip().lower())
     chosen = next((p for p in parts if want and p.endswith(want)), parts[0])
     for suffix in ("-> yes", "-> no", "-> unclear"):
         if chosen.endswith(suffix):

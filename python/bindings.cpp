@@ -1016,6 +1016,10 @@ py::dict evaluate_sets(const std::string& sets_dir, const py::dict& overrides, i
       pd["text"] = part.text;
       pd["support"] = std::string(pt::verdict_name(part.support));
       pd["margin"] = part.margin;
+      pd["estimate"] = part.estimate;
+      pd["lo"] = part.lo;
+      pd["hi"] = part.hi;
+      pd["threshold"] = part.threshold;
       parts.append(pd);
     }
     py::dict cd;

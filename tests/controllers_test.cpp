@@ -226,7 +226,8 @@ TEST(Casting, UpwindLegHeadsBetaOffTheMeasuredUpwindOnTheChosenSide) {
 }
 
 TEST(Casting, ZigzagAlternatesSidesAcrossAStripPlume) {
-  const CastingParams params;
+  CastingParams params;
+  params.reacquire_side = ReacquireSide::kAlternate;
   const double half_width = 0.3;
   for (std::uint64_t seed : {1, 2, 3, 4}) {
     Casting casting(params, Rng(seed));

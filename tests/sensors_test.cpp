@@ -279,7 +279,7 @@ TEST(OdorSensor, SamplesPlumeConcentrationAtRobotAndSensorHeight) {
   const FilamentPlume plume = warm_plume();
   OdorSensorParams params;
   EXPECT_EQ(params.threshold, 100.0);
-  EXPECT_EQ(params.height, 0.02);
+  EXPECT_EQ(params.height, 0.07);
   for (const double height : {0.0, 0.05, -0.1}) {
     params.height = height;
     for (const Pose& pose :

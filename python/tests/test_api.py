@@ -34,7 +34,7 @@ def test_default_scenario_resolves_like_plumetrace_config():
 
 def test_keys_read_and_change_by_dotted_path_or_attribute():
     s = pt.Scenario()
-    assert s["wind.vx"] == 0.9 and s.wind.vx == 0.9  # the default reading (docs/fidelity.md)
+    assert s["wind.vx"] == 1.0 and s.wind.vx == 1.0  # the default reading (docs/fidelity.md)
     s.wind_sensor.sigma_a = 0.45
     s["controller.algorithm"] = "surge-spiral"
     assert s["wind_sensor.sigma_a"] == 0.45

@@ -45,6 +45,7 @@ seed = 99
 [set]
 controller.algorithm = "{algorithm}"
 robot.start_x = 6.0
+wind_sensor.sigma_a = 0.3  # noise enough that the robot loses the plume and casts
 [[axis]]
 key = "{table}.d_cast"
 values = [0.135, 0.27, 0.54]

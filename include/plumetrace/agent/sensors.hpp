@@ -13,9 +13,10 @@ namespace plumetrace {
 struct OdorSensorParams {
   /// Concentration at or above which odor is perceived.
   double threshold = 100.0;
-  /// Height of the sensor above the source centre (m). why: 0.02, the robot model's sensors 7 cm
-  /// up and the 2008 world's source centred 5 cm up (docs/fidelity.md, unknown 8).
-  double height = 0.02;
+  /// Height of the sensor above the release centre (m). why: 0.07, the robot model's sensors 7 cm
+  /// up with the release centre at the floor (docs/fidelity.md, unknown 8 and "Which reading
+  /// won").
+  double height = 0.07;
 
   /// The config keys (core/config.hpp).
   template <class V>

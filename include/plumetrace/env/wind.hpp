@@ -46,9 +46,9 @@ struct MeanderParams {
 struct WindParams {
   /// Which field.
   WindModel model = WindModel::kConstant;
-  /// Constant wind velocity (m/s); paper eq. 1; the mean of a meandering wind. why: 0.9, the
-  /// plugin's hard-coded wind, not the printed 1 (docs/fidelity.md, unknown 9).
-  Vec3 velocity{0.9, 0.0, 0.0};
+  /// Constant wind velocity (m/s); paper eq. 1; the mean of a meandering wind. why: 1, the
+  /// paper's "constant wind field of 1 m/s" (docs/fidelity.md, unknown 9 and "Which reading won").
+  Vec3 velocity{1.0, 0.0, 0.0};
   /// The meandering wind's perturbation (model "meander").
   MeanderParams meander;
 

@@ -115,8 +115,8 @@ inline constexpr double kMaxWindSubsteps = 1000.0;
 
 /// The arena length (m) the paper's ring and warm-up were set for: the 16 m wind tunnel.
 inline constexpr double kReferenceArenaLength = 16.0;
-/// The wind (m/s) the paper's ring and warm-up were set for: the default reading's 0.9 m/s
-/// (the plugin's), with which a filament crosses the reference arena in 17.8 s.
+/// The wind (m/s) the paper's ring and warm-up were set for: the plugin's 0.9 m/s (the default
+/// reading's until 0.4.0), with which a filament crosses the reference arena in 17.8 s.
 inline constexpr double kReferenceWind = 0.9;
 /// The time the paper's ring keeps at the reference (s): the plugin's 1600 filaments released at
 /// 100 /s; the plume then ends 14.4 m downwind of the source (docs/scenarios.md).

@@ -17,7 +17,9 @@ struct CastingParams {
   /// Path length without odor after which the plume is lost (m).
   double d_lost = 0.614;
   /// Side of the upwind leg after reacquisition; the next crosswind leg still goes toward -s.
-  ReacquireSide reacquire_side = ReacquireSide::kAlternate;
+  /// why: same, the paper's "moves upwind with angle beta again" (docs/fidelity.md, unknown 13
+  /// and "Which reading won").
+  ReacquireSide reacquire_side = ReacquireSide::kSame;
 
   /// The config keys (core/config.hpp), in the table "casting".
   template <class V>

@@ -66,6 +66,10 @@ int print_plume_stats(const PlumeStats& st, bool json) {
     std::cout << plume_stats_to_json(st) << std::endl;
     return 0;
   }
+  // the fraction of a line's samples with odor; NaN without samples
+  const auto odor_fraction = [](const auto& g) {
+    return g.samples ? static_cast<double>(g.detections) / static_cast<double>(g.samples) : NAN;
+  };
   std::printf("plume statistics: %d trials (seed %llu), d_lost %.3f m, sensor speed %.3f m/s\n",
               st.trials, static_cast<unsigned long long>(st.seed), st.d_lost, st.speed);
   std::cout << "along (upwind, start to source)\n"
@@ -73,8 +77,7 @@ int print_plume_stats(const PlumeStats& st, bool json) {
   for (const auto& a : st.along) {
     const auto& g = a.gaps;
     std::printf(
-        "%8.3f %5.3f %6zu %7.3f %6.3f %7.3f  %8.3f  %10.3f\n", a.offset,
-        g.samples ? static_cast<double>(g.detections) / static_cast<double>(g.samples) : NAN,
+        "%8.3f %5.3f %6zu %7.3f %6.3f %7.3f  %8.3f  %10.3f\n", a.offset, odor_fraction(g),
         g.gaps.size(), g.median, g.p90, g.longest, g.fraction_longer, a.leading_median);
   }
   std::cout << "across (crosswind, wall to wall)\n"
@@ -82,8 +85,7 @@ int print_plume_stats(const PlumeStats& st, bool json) {
   for (const auto& c : st.across) {
     const auto& g = c.gaps;
     std::printf(
-        "%8.3f %5.3f %6zu %7.3f %7.3f  %8.3f  %11.3f  %8.3f\n", c.distance,
-        g.samples ? static_cast<double>(g.detections) / static_cast<double>(g.samples) : NAN,
+        "%8.3f %5.3f %6zu %7.3f %7.3f  %8.3f  %11.3f  %8.3f\n", c.distance, odor_fraction(g),
         g.gaps.size(), g.median, g.longest, g.fraction_longer, c.band_median, c.band_max);
   }
   const auto& r = st.release;

@@ -491,15 +491,8 @@ std::string build_summary(const std::vector<ExpandedSweep>& sweeps, const std::v
     by_name[name] = st;
   }
   doc["sets"] = sets;
-  {
-    // the main reading's verdicts under both rule sets; the counts are the readings'
-    json verdicts;
-    add_verdicts(verdicts, by_name);
-    doc["rules"] = verdicts["rules"];
-    doc["claims"] = verdicts["claims"];
-    doc["rules_030"] = {{"rules", verdicts["rules_030"]["rules"]},
-                        {"claims", verdicts["rules_030"]["claims"]}};
-  }
+  // the main reading's verdicts under both rule sets
+  add_verdicts(doc, by_name);
 
   // the three algorithms at their fixed values under other success radii
   json variants = json::array(), sens_rows = json::array();

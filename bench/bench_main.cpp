@@ -120,8 +120,9 @@ BENCHMARK(BM_WholeRun)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMilli
 std::vector<RunRow> sample_rows(std::size_t count, std::uint64_t first) {
   std::vector<RunRow> rows(count);
   for (std::size_t i = 0; i < count; ++i) {
-    rows[i] = {"G", 3, first + i, "0123456789abcdef", {}};
-    rows[i].result = {Outcome::kSuccess, 81.3, 9.7, 8.1, 1.2, 2, 0.4, 2540, 3, 20080101, first + i};
+    rows[i] = {"G", 3, first + i, 0, "0123456789abcdef", {}};
+    rows[i].result = {Outcome::kSuccess, 81.3, 9.7, 8.1, 1.2, 2, 0.4, 2540, 3, 0.0, 0.0, NAN,
+                      20080101, first + i, 0};
   }
   return rows;
 }

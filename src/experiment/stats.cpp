@@ -337,6 +337,9 @@ PointStats summarize(std::span<const RunResult> runs) {
       case Outcome::kGaveUp:
         ++out.gave_up;
         break;
+      case Outcome::kWrongDeclaration:
+        ++out.wrong_declarations;
+        break;
       case Outcome::kRunning:
         break;
     }

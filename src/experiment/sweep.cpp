@@ -222,7 +222,8 @@ std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const Ta
   for (std::size_t k = 0; k < results.size(); ++k) {
     const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(group[k].sweep)];
     const SweepPoint& point = sweep.points[static_cast<std::size_t>(group[k].point)];
-    rows.push_back({sweep.def.name, point.index, group[k].trial, point.config_hash, results[k]});
+    rows.push_back({sweep.def.name, point.index, group[k].trial, results[k].agent, point.config_hash,
+                    results[k]});
   }
   return rows;
 }

@@ -119,6 +119,7 @@ json stats_json(const PointStats& p) {
           {"walls", p.walls},
           {"timeouts", p.timeouts},
           {"gave_up", p.gave_up},
+          {"wrong_declarations", p.wrong_declarations},
           {"success_rate", number_or_null(p.success_rate)},
           {"success_lo", number_or_null(p.success_ci.lo)},
           {"success_hi", number_or_null(p.success_ci.hi)},

@@ -6,7 +6,7 @@
 
 namespace plumetrace {
 
-static_assert(static_cast<std::size_t>(Outcome::kGaveUp) + 1 == kOutcomeNames.size(),
+static_assert(static_cast<std::size_t>(Outcome::kWrongDeclaration) + 1 == kOutcomeNames.size(),
               "every outcome has a name");
 
 std::string_view outcome_name(Outcome outcome) {

@@ -158,6 +158,8 @@ std::string outcome_color(Outcome outcome) {
       return "#f0ad4e";
     case Outcome::kGaveUp:
       return "#8c6bb1";
+    case Outcome::kWrongDeclaration:
+      return "#5b7fa6";
     case Outcome::kRunning:
       break;
   }

@@ -96,6 +96,7 @@ struct PointStats {
   std::int64_t walls = 0;          ///< runs that touched a wall
   std::int64_t timeouts = 0;       ///< runs that timed out
   std::int64_t gave_up = 0;        ///< runs whose controller gave up
+  std::int64_t wrong_declarations = 0;  ///< runs that declared the source where it is not
   double success_rate = NAN;       ///< successes / runs
   Interval success_ci;             ///< Wilson 95% interval of the success rate
   MeanCi overhead;                 ///< overhead d_t/d_u over successful runs only, t 95% interval

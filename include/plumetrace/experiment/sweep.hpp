@@ -119,8 +119,9 @@ struct RunRow {
   std::string sweep;        ///< sweep name
   int point = 0;            ///< point index in the sweep
   std::uint64_t trial = 0;  ///< trial index
+  int agent = 0;            ///< the robot's index in its team (0 for a robot alone)
   std::string config_hash;  ///< hash of the point's resolved scenario
-  RunResult result;         ///< metrics (with seed and trial)
+  RunResult result;         ///< metrics (with seed, trial and agent)
 };
 
 /// Progress of a campaign.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -11,14 +12,15 @@
 namespace plumetrace {
 
 /// How a run ended (docs/model.md section 8).
-enum class Outcome { kRunning, kSuccess, kWall, kTimeout, kGaveUp };
+enum class Outcome { kRunning, kSuccess, kWall, kTimeout, kGaveUp, kWrongDeclaration };
 
 /// The name of each outcome, indexed by its value: the one table outcome_name and parse_outcome
 /// read.
-inline constexpr std::array<std::string_view, 5> kOutcomeNames{"running", "success", "wall",
-                                                               "timeout", "gave_up"};
+inline constexpr std::array<std::string_view, 6> kOutcomeNames{
+    "running", "success", "wall", "timeout", "gave_up", "wrong_declaration"};
 
-/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up" ("" for no outcome).
+/// Name of an outcome: "running", "success", "wall", "timeout", "gave_up", "wrong_declaration"
+/// ("" for no outcome).
 std::string_view outcome_name(Outcome outcome);
 
 /// The outcome that outcome_name gives `name`; throws ConfigError naming it and the names
@@ -58,10 +60,21 @@ struct RunResult {
   std::int64_t steps = 0;
   /// Wind samples the controller took.
   std::int64_t wind_samples = 0;
+  /// Time from release to the first step with odor perceived (s); NaN when odor never was.
+  /// Plume finding: 0 for a robot released in odor that perceives it at once.
+  double t_first_odor = NAN;
+  /// Path length from release to the first step with odor perceived (m); NaN when never.
+  double d_first_odor = NAN;
+  /// Distance from the declared source position to the true source centre (m); NaN when the
+  /// robot declared nothing.
+  double declaration_error = NAN;
   /// Master seed that, with the trial index, replays the run.
   std::uint64_t seed = 0;
   /// Trial index.
   std::uint64_t trial = 0;
+  /// The robot's index in its team (0 for a robot alone); with seed and trial it identifies the
+  /// row.
+  int agent = 0;
 
   /// The one list of a run's result fields, in column order: calls `v(ResultField, value)` for
   /// each. runs.csv, the JSON result (run --json, results.json, traces), the store's runs table,
@@ -81,6 +94,9 @@ struct RunResult {
     v({.name = "odor_fraction"}, r.odor_fraction);
     v({.name = "steps"}, r.steps);
     v({.name = "wind_samples"}, r.wind_samples);
+    v({.name = "t_first_odor", .unit = "s", .nullable = true}, r.t_first_odor);
+    v({.name = "d_first_odor", .unit = "m", .nullable = true}, r.d_first_odor);
+    v({.name = "declaration_error", .unit = "m", .nullable = true}, r.declaration_error);
   }
 };
 

@@ -26,7 +26,7 @@ MISSING_COLOR = "#999999"
 
 
 OUTCOME_COLORS = {"success": "#4c9a4c", "wall": "#d9534f", "timeout": "#f0ad4e",
-                  "gave_up": "#8c6bb1"}
+                  "gave_up": "#8c6bb1", "wrong_declaration": "#5b7fa6"}
 
 
 # Controller states (the names the C++ controllers report), coloured by role: moving upwind in

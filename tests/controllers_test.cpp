@@ -78,8 +78,11 @@ class ScriptedWorld {
     std::vector<StepRecord> log;
     for (int k = 0; k < steps; ++k) {
       const double t = static_cast<double>(++steps_) * kDt;
-      const Observation obs{t, odor_(robot_.pose.x, robot_.pose.y, t), robot_.pose,
-                            robot_.odometer};
+      Observation obs;
+      obs.time = t;
+      obs.odor = odor_(robot_.pose.x, robot_.pose.y, t);
+      obs.odometry = robot_.pose;
+      obs.odometer = robot_.odometer;
       const int calls_before = wind_.calls();
       const Command command = controller.step(obs, wind_);
       if (!command.give_up) step_robot(params_, command, kDt, robot_);

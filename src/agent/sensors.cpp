@@ -1,6 +1,44 @@
 #include "plumetrace/agent/sensors.hpp"
 
+#include <string>
+
+#include "plumetrace/core/errors.hpp"
+
 namespace plumetrace {
+
+namespace {
+
+constexpr const char* kModelHelp = "odor sensor model: ideal (the paper's) or first-order (MOX-like)";
+
+}  // namespace
+
+void OdorSensorParams::fields(FieldVisitor& v) {
+  const SensorModelRegistry& registry = sensor_model_registry();
+  v("threshold", threshold, "concentration at which odor is perceived", kPositive);
+  v("height", height, "odor and wind sensor height (m)", kAnyNumber);
+  v("model", model, kModelHelp, registry.names());
+  models.fields(registry, v);
+}
+
+void OdorSensorParams::read_fields(FieldReader& v) const {
+  // why: a FieldReader never writes through the references it is handed
+  auto& self = const_cast<OdorSensorParams&>(*this);
+  FieldVisitor& w = v;
+  const SensorModelRegistry& registry = sensor_model_registry();
+  w("threshold", self.threshold, "concentration at which odor is perceived", kPositive);
+  w("height", self.height, "odor and wind sensor height (m)", kAnyNumber);
+  w("model", self.model, kModelHelp, registry.names());
+  models.read_fields(registry, v);
+}
+
+std::unique_ptr<OdorSensorModel> make_sensor_model(const OdorSensorParams& params, Rng rng) {
+  const SensorModelRegistry& registry = sensor_model_registry();
+  const auto i = static_cast<std::size_t>(params.model);
+  if (i >= registry.size()) {
+    throw ConfigError("odor.model: unknown sensor model (index " + std::to_string(i) + ")");
+  }
+  return registry[i].make(params.models.at(registry, i), rng);
+}
 
 double sense_concentration(const OdorSensorParams& params, const OdorField& odor,
                            const Pose& pose) {

@@ -53,6 +53,15 @@ std::uint64_t derive_seed(std::uint64_t master_seed, std::uint64_t trial, Stream
   return splitmix64(state);
 }
 
+std::uint64_t derive_seed(std::uint64_t master_seed, std::uint64_t trial, Stream stream,
+                          int agent) {
+  std::uint64_t state = derive_seed(master_seed, trial, stream);
+  if (agent == 0) return state;
+  // why: one more round through the mixer, so agent k's stream shares nothing with agent 0's
+  state ^= static_cast<std::uint64_t>(agent) * 0x9fb21c651e98df25ULL;
+  return splitmix64(state);
+}
+
 Rng::Rng(std::uint64_t seed) {
   std::uint64_t state = seed;
   for (auto& word : s_) word = splitmix64(state);

@@ -330,6 +330,8 @@ void each_table(S& s, Visit visit) {
   visit("odor", s.odor);
   visit("wind_sensor", s.wind_sensor);
   visit("robot", s.robot);
+  visit("start", s.start);
+  visit("team", s.team);
   visit("supervisor", s.supervisor);
   visit("controller", s.controller);
 }
@@ -423,6 +425,89 @@ void check_meander(const WindParams& wind, const WindRegion& region, double dt) 
 
 }  // namespace
 
+// why: a team or a start region that cannot be placed is bad input, found before any run (issue
+// 24, item 8); what only a run can tell (a region mostly outside odor) is said by the run
+void check_team_start(const Scenario& scenario) {
+  const auto& a = scenario.arena;
+  const RobotParams& robot = scenario.robot;
+  const double r = robot.radius;
+  const StartParams& st = scenario.start;
+  const TeamParams& team = scenario.team;
+  const bool contact = team.contact == TeamParams::Contact::kOn;
+  const std::string n = std::to_string(team.count);
+  if (st.region == StartRegion::kPoint) {
+    if (st.condition == StartCondition::kInOdor) {
+      throw ConfigError(
+          "start.condition: 'in_odor' needs a start region to draw from (start.region = "
+          "'rectangle' or 'disc'); a point start is where it is");
+    }
+    if (team.count < 2) return;
+    if (contact && team.spacing < 2.0 * r) {
+      throw ConfigError("team.spacing: the " + n + " robots would start inside each other (" +
+                        bound_text(team.spacing) + " m apart, less than two radii, " +
+                        bound_text(2.0 * r) + " m); set team.spacing >= " + bound_text(2.0 * r) +
+                        " or team.contact = 'off'");
+    }
+    const double h = robot.start.heading;
+    // the outermost robots: on the left k = 1, 3, ... at (k + 1) / 2 spacings, on the right
+    // k = 2, 4, ... at k / 2 (sim/world.hpp, team_starts)
+    for (const double side : {-1.0, 1.0}) {
+      const int outer = side > 0.0 ? team.count / 2 : (team.count - 1) / 2;
+      const double reach = static_cast<double>(outer) * team.spacing;
+      const double x = robot.start.x - side * reach * std::sin(h);
+      const double y = robot.start.y + side * reach * std::cos(h);
+      if (x - r < a.x_min || x + r > a.x_max || y - r < a.y_min || y + r > a.y_max) {
+        throw ConfigError("team.count, team.spacing: the outermost of the " + n +
+                          " robots would start outside the arena, at (" + bound_text(x) + ", " +
+                          bound_text(y) + ") m; fewer robots, a smaller spacing or a start "
+                          "region (start.region)");
+      }
+    }
+    return;
+  }
+  const double ox = st.frame == StartFrame::kSource ? scenario.source.center.x : 0.0;
+  const double oy = st.frame == StartFrame::kSource ? scenario.source.center.y : 0.0;
+  // the region in the arena's frame, as a box; where a robot's centre may be
+  double x0, x1, y0, y1;
+  std::string keys;
+  if (st.region == StartRegion::kRectangle) {
+    if (!(st.x_max > st.x_min)) throw ConfigError("start.x_max: must be > start.x_min");
+    if (!(st.y_max > st.y_min)) throw ConfigError("start.y_max: must be > start.y_min");
+    x0 = ox + st.x_min, x1 = ox + st.x_max, y0 = oy + st.y_min, y1 = oy + st.y_max;
+    keys = "start.x_min, start.x_max, start.y_min, start.y_max";
+  } else {
+    x0 = ox + st.cx - st.radius, x1 = ox + st.cx + st.radius;
+    y0 = oy + st.cy - st.radius, y1 = oy + st.cy + st.radius;
+    keys = "start.cx, start.cy, start.radius";
+  }
+  const double fx0 = std::max(x0, a.x_min + r), fx1 = std::min(x1, a.x_max - r);
+  const double fy0 = std::max(y0, a.y_min + r), fy1 = std::min(y1, a.y_max - r);
+  bool fits = fx1 > fx0 && fy1 > fy0;
+  if (fits && st.region == StartRegion::kDisc) {
+    // the point of the free box nearest the disc's centre lies inside the disc
+    const double cx = ox + st.cx, cy = oy + st.cy;
+    const double nx = std::clamp(cx, fx0, fx1), ny = std::clamp(cy, fy0, fy1);
+    fits = std::hypot(nx - cx, ny - cy) < st.radius;
+  }
+  if (!fits) {
+    throw ConfigError(keys + ": no robot fits in the start region (" +
+                      (st.frame == StartFrame::kSource ? "relative to the source; " : "") +
+                      "a robot's centre must be robot.radius = " + bound_text(r) +
+                      " m clear of the walls)");
+  }
+  if (contact && team.count > 1) {
+    double area = (fx1 - fx0) * (fy1 - fy0);
+    if (st.region == StartRegion::kDisc) area = std::min(area, kPi * st.radius * st.radius);
+    // why: random placement of discs fills at most about half the plane (random sequential
+    // adsorption jams at 0.547); a robot's exclusion square is (2 r)^2
+    if (static_cast<double>(team.count) * 4.0 * r * r > 0.5 * area) {
+      throw ConfigError("team.count: " + n + " robots of radius " + bound_text(r) +
+                        " m do not fit apart in the start region (" + keys + "; about " +
+                        bound_text(area) + " m^2 inside the walls)");
+    }
+  }
+}
+
 void validate(const Scenario& scenario) {
   // every key within its own range
   Validator validator;
@@ -465,6 +550,7 @@ void validate(const Scenario& scenario) {
     throw ConfigError("robot.start_y: the robot must start inside the arena, clear of the walls" +
                       follows(robot.start_y_auto, "y", src.y, robot.start_offset.y));
   }
+  check_team_start(scenario);
   if (scenario.sim.dt > scenario.supervisor.timeout) {
     throw ConfigError("sim.dt: must not exceed supervisor.timeout");
   }

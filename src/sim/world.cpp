@@ -1,82 +1,191 @@
 #include "plumetrace/sim/world.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "plumetrace/core/errors.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 
 namespace plumetrace {
 
 Outcome supervise(const Scenario& scenario, const RobotState& robot, double t) {
   const Pose& p = robot.pose;
-  const auto& src = scenario.source.center;
-  const double dx = p.x - src.x, dy = p.y - src.y;
-  const double rs = scenario.supervisor.success_radius;
-  if (dx * dx + dy * dy <= rs * rs) return Outcome::kSuccess;
-  // touching a solid source is finding it
-  if (robot.touching) return Outcome::kSuccess;
-  const auto& a = scenario.arena;
-  const double r = scenario.robot.radius;
-  if (p.x - a.x_min < r || a.x_max - p.x < r || p.y - a.y_min < r || a.y_max - p.y < r) {
-    return Outcome::kWall;
+  if (scenario.supervisor.success == SuccessRule::kReach) {
+    const auto& src = scenario.source.center;
+    const double dx = p.x - src.x, dy = p.y - src.y;
+    const double rs = scenario.supervisor.success_radius;
+    if (dx * dx + dy * dy <= rs * rs) return Outcome::kSuccess;
+    // touching a solid source is finding it
+    if (robot.touching) return Outcome::kSuccess;
+  }
+  if (scenario.supervisor.walls == WallRule::kEnd) {
+    const auto& a = scenario.arena;
+    const double r = scenario.robot.radius;
+    if (p.x - a.x_min < r || a.x_max - p.x < r || p.y - a.y_min < r || a.y_max - p.y < r) {
+      return Outcome::kWall;
+    }
   }
   if (t >= scenario.supervisor.timeout) return Outcome::kTimeout;
   return Outcome::kRunning;
 }
 
-Agent::Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+namespace {
+
+// the robot's centre is clear of every wall by its radius
+bool clear_of_walls(const ArenaParams& a, double r, double x, double y) {
+  return x - a.x_min >= r && a.x_max - x >= r && y - a.y_min >= r && a.y_max - y >= r;
+}
+
+}  // namespace
+
+Agent::Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial, int index,
              std::unique_ptr<Controller> controller, const Environment& env)
     : scenario_(scenario),
       seed_(seed),
       trial_(trial),
+      index_(index),
       env_(env),
+      start_(scenario.robot.start),
       robot_{scenario.robot.start, 0.0},
-      wind_rng_(derive_seed(seed, trial, Stream::kWindSensor)),
+      wind_rng_(derive_seed(seed, trial, Stream::kWindSensor, index)),
       wind_sensor_(scenario_.wind_sensor, *env.wind, robot_.pose, scenario_.odor.height, wind_rng_),
-      controller_(std::move(controller)) {}
+      sensor_model_(
+          make_sensor_model(scenario_.odor, Rng(derive_seed(seed, trial, Stream::kOdorSensor, index)))),
+      controller_(std::move(controller)),
+      reads_(controller_->reads()) {}
 
-void Agent::release() {
+void Agent::release(const Pose& start) {
+  start_ = start;
+  robot_ = {start, 0.0};
+  proposed_ = robot_;
   // what the sensor reads at release (for traces; the controller first senses after one step)
   sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
-  odor_ = sense_odor(scenario_.odor, *env_.odor, robot_.pose);
+  if (sensor_model_->ideal()) {
+    odor_ = sense_odor(scenario_.odor, *env_.odor, robot_.pose);
+  } else {
+    // a sensor with a state starts settled in the concentration at release
+    const double c = env_.odor->concentration(sensed_at_);
+    sensor_model_->reset(c);
+    reading_ = c;
+    odor_ = perceives_odor(scenario_.odor, c);
+  }
 }
 
 Command Agent::decide() {
-  const Observation obs = sense();
+  const Observation obs = sense(reads_);
   return controller_->step(obs, wind_sensor_);
 }
 
-Observation Agent::sense() {
-  ++steps_;
+void Agent::sense_odor_now(unsigned reads) {
   sensed_at_ = odor_sensor_point(scenario_.odor, robot_.pose);
-  odor_ = sense_odor(scenario_.odor, *env_.odor, robot_.pose);
-  if (odor_) ++odor_steps_;
-  wind_sensor_.clear();
-  // why: odometry starts at the release pose, so a controller cannot read the arena's frame
-  return {time(), odor_, relative_pose(scenario_.robot.start, robot_.pose), robot_.odometer};
+  if (sensor_model_->ideal() && !(reads & kReadsConcentration)) {
+    // why: the threshold test stops summing once it is reached; the paper's controllers pay no
+    // more than before
+    odor_ = sense_odor(scenario_.odor, *env_.odor, robot_.pose);
+    reading_ = NAN;
+    return;
+  }
+  const double c = env_.odor->concentration(sensed_at_);
+  reading_ = sensor_model_->read(c, scenario_.sim.dt);
+  odor_ = perceives_odor(scenario_.odor, reading_);
 }
 
-void Agent::act(Command command) {
+Observation Agent::sense(unsigned reads) {
+  ++steps_;
+  sense_odor_now(reads);
+  if (odor_) {
+    ++odor_steps_;
+    if (std::isnan(t_first_odor_)) {
+      t_first_odor_ = time();
+      d_first_odor_ = robot_.odometer;
+    }
+  }
+  wind_sensor_.clear();
+  // why: odometry starts at the release pose, so a controller cannot read the arena's frame
+  Observation obs;
+  obs.time = time();
+  obs.odor = odor_;
+  obs.odometry = relative_pose(start_, robot_.pose);
+  obs.odometer = robot_.odometer;
+  if (reads & kReadsConcentration) obs.concentration = reading_;
+  inbox_.clear();
+  if (!pending_.empty()) {
+    // messages due now, in the order (sent, from)
+    auto due = std::stable_partition(pending_.begin(), pending_.end(),
+                                     [&](const auto& m) { return m.first > steps_; });
+    for (auto it = due; it != pending_.end(); ++it) inbox_.push_back(it->second);
+    pending_.erase(due, pending_.end());
+    std::sort(inbox_.begin(), inbox_.end(), [](const Message& a, const Message& b) {
+      return a.sent != b.sent ? a.sent < b.sent : a.from < b.from;
+    });
+  }
+  if (reads & kReadsMessages) obs.messages = inbox_;
+  return obs;
+}
+
+void Agent::receive(std::int64_t step, const Message& message) {
+  pending_.emplace_back(step, message);
+}
+
+void Agent::propose(Command command) {
   // why: a NaN heading or curvature would carry the robot to NaN, which no wall or timeout check
   // catches; it is the controller's error, so it stops the run rather than ending it as an outcome
-  if (!std::isfinite(command.heading) || !std::isfinite(command.curvature)) {
+  if (!std::isfinite(command.heading) || !std::isfinite(command.curvature) ||
+      (command.declare && !(std::isfinite(command.source.x) && std::isfinite(command.source.y)))) {
     throw std::invalid_argument(
         "the controller returned a command with a non-finite value (heading " +
         format_number(command.heading) + ", curvature " + format_number(command.curvature) +
+        (command.declare ? ", declared source (" + format_number(command.source.x) + ", " +
+                               format_number(command.source.y) + ")"
+                         : std::string()) +
         ") at t = " + format_number(time()) + " s of run seed " + std::to_string(seed_) +
-        ", trial " + std::to_string(trial_));
+        ", trial " + std::to_string(trial_) + (index_ ? ", robot " + std::to_string(index_) : ""));
   }
-  command.heading = wrap_angle(command.heading + scenario_.robot.start.heading);
+  proposed_ = robot_;
+  moving_ = false;
+  ended_ = false;
   if (command.give_up) {
     outcome_ = Outcome::kGaveUp;
+    ended_ = true;
     return;
   }
-  // move
+  if (command.declare) {
+    // the declaration, from the odometry frame into the arena's
+    const Vec2 d = rotate(command.source, start_.heading);
+    declared_ = {start_.x + d.x, start_.y + d.y};
+    const auto& src = scenario_.source.center;
+    declaration_error_ = std::hypot(declared_.x - src.x, declared_.y - src.y);
+    outcome_ = declaration_error_ <= scenario_.supervisor.declaration_radius
+                   ? Outcome::kSuccess
+                   : Outcome::kWrongDeclaration;
+    ended_ = true;
+    return;
+  }
+  command.heading = wrap_angle(command.heading + start_.heading);
   const auto& src = scenario_.source;
-  step_robot(scenario_.robot, command, scenario_.sim.dt, robot_,
+  step_robot(scenario_.robot, command, scenario_.sim.dt, proposed_,
              {{src.center.x, src.center.y}, src.solid_radius});
-  // check
+  if (scenario_.supervisor.walls == WallRule::kBlock &&
+      !clear_of_walls(scenario_.arena, scenario_.robot.radius, proposed_.pose.x,
+                      proposed_.pose.y)) {
+    block();
+  }
+  moving_ = proposed_.pose.x != robot_.pose.x || proposed_.pose.y != robot_.pose.y;
+}
+
+void Agent::block() {
+  proposed_.pose.x = robot_.pose.x;
+  proposed_.pose.y = robot_.pose.y;
+  proposed_.odometer = robot_.odometer;
+  proposed_.touching = robot_.touching;
+  moving_ = false;
+}
+
+void Agent::commit() {
+  if (ended_) return;
+  robot_ = proposed_;
   outcome_ = supervise(scenario_, robot_, time());
 }
 
@@ -85,16 +194,94 @@ RunResult Agent::result() const {
   r.outcome = outcome_;
   r.time = time();
   r.d_t = robot_.odometer;
-  r.d_u = scenario_.robot.start.x - robot_.pose.x;
+  r.d_u = start_.x - robot_.pose.x;
   r.overhead = r.d_u > 0.0 ? r.d_t / r.d_u : NAN;
   r.losses = controller_->losses();
   r.odor_fraction =
       steps_ > 0 ? static_cast<double>(odor_steps_) / static_cast<double>(steps_) : 0.0;
   r.steps = steps_;
   r.wind_samples = wind_sensor_.total();
+  r.t_first_odor = t_first_odor_;
+  r.d_first_odor = d_first_odor_;
+  r.declaration_error = declaration_error_;
   r.seed = seed_;
   r.trial = trial_;
+  r.agent = index_;
   return r;
+}
+
+std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                              const Environment& env) {
+  const int n = scenario.team.count;
+  const StartParams& st = scenario.start;
+  const RobotParams& robot = scenario.robot;
+  const double r = robot.radius;
+  const bool contact = scenario.team.contact == TeamParams::Contact::kOn;
+  std::vector<Pose> starts;
+  starts.reserve(static_cast<std::size_t>(n));
+  const auto heading = [&](Rng& rng) {
+    return st.heading == StartHeading::kRandom ? kPi * (2.0 * rng.uniform() - 1.0)
+                                               : robot.start.heading;
+  };
+  if (st.region == StartRegion::kPoint) {
+    // robot 0 at the start, the others beside it, alternately left and right of its heading
+    const Vec2 left{-std::sin(robot.start.heading), std::cos(robot.start.heading)};
+    for (int k = 0; k < n; ++k) {
+      const double side = (k % 2 == 1 ? 1.0 : -1.0) * static_cast<double>((k + 1) / 2);
+      const double off = side * scenario.team.spacing;
+      Pose p{robot.start.x + off * left.x, robot.start.y + off * left.y, robot.start.heading};
+      if (st.heading == StartHeading::kRandom) {
+        Rng rng(derive_seed(seed, trial, Stream::kStart, k));
+        p.heading = heading(rng);
+      }
+      starts.push_back(p);
+    }
+    return starts;
+  }
+  const bool source_frame = st.frame == StartFrame::kSource;
+  const Vec2 origin = source_frame ? Vec2{scenario.source.center.x, scenario.source.center.y}
+                                   : Vec2{0.0, 0.0};
+  const auto& src = scenario.source;
+  const double keep_off = std::max(src.solid_radius + r, scenario.supervisor.success_radius);
+  for (int k = 0; k < n; ++k) {
+    Rng rng(derive_seed(seed, trial, Stream::kStart, k));
+    bool found = false;
+    for (int draw = 0; draw < kMaxStartDraws && !found; ++draw) {
+      Vec2 p;
+      if (st.region == StartRegion::kRectangle) {
+        p = {st.x_min + (st.x_max - st.x_min) * rng.uniform(),
+             st.y_min + (st.y_max - st.y_min) * rng.uniform()};
+      } else {
+        // uniform in the disc: radius by the square root of a uniform
+        const double rho = st.radius * std::sqrt(rng.uniform());
+        const double phi = 2.0 * kPi * rng.uniform();
+        p = {st.cx + rho * std::cos(phi), st.cy + rho * std::sin(phi)};
+      }
+      p = {origin.x + p.x, origin.y + p.y};
+      const Pose pose{p.x, p.y, heading(rng)};
+      if (!clear_of_walls(scenario.arena, r, p.x, p.y)) continue;
+      if (std::hypot(p.x - src.center.x, p.y - src.center.y) <= keep_off) continue;
+      bool overlaps = false;
+      for (const Pose& q : starts) {
+        if (contact && std::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) overlaps = true;
+      }
+      if (overlaps) continue;
+      if (st.condition == StartCondition::kInOdor &&
+          !sense_odor(scenario.odor, *env.odor, pose)) {
+        continue;
+      }
+      starts.push_back(pose);
+      found = true;
+    }
+    if (!found) {
+      throw ConfigError(
+          "start.region, start.condition: no start found for robot " + std::to_string(k) +
+          " in " + std::to_string(kMaxStartDraws) + " draws of run seed " + std::to_string(seed) +
+          ", trial " + std::to_string(trial) +
+          " (the region is mostly outside the arena, blocked, crowded or outside odor)");
+    }
+  }
+  return starts;
 }
 
 Environment make_environment(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
@@ -113,8 +300,8 @@ void warm_up(const Scenario& scenario, Environment& env) {
 
 std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::uint64_t seed,
                                                 std::uint64_t trial,
-                                                const ControllerFactory& factory) {
-  Rng rng(derive_seed(seed, trial, Stream::kController));
+                                                const ControllerFactory& factory, int agent) {
+  Rng rng(derive_seed(seed, trial, Stream::kController, agent));
   return factory ? factory(scenario, rng) : make_controller(scenario.controller, rng);
 }
 
@@ -146,42 +333,135 @@ World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
 World::World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
              std::unique_ptr<Controller> controller, Environment env)
     : env_(complete(std::move(env))), dt_(scenario.sim.dt) {
-  add_agent(scenario, seed, trial, std::move(controller));
-  start(scenario);
+  add_team(scenario, seed, trial, std::move(controller), {});
+  start(scenario, seed, trial);
 }
 
 World::World(const std::vector<const Scenario*>& scenarios, std::uint64_t seed, std::uint64_t trial,
              const ControllerFactory& factory)
     : env_(make_environment(first_of(scenarios), seed, trial)), dt_(first_of(scenarios).sim.dt) {
   for (const Scenario* s : scenarios) {
-    add_agent(*s, seed, trial, make_run_controller(*s, seed, trial, factory));
+    add_team(*s, seed, trial, make_run_controller(*s, seed, trial, factory), factory);
   }
-  start(*scenarios.front());
+  start(*scenarios.front(), seed, trial);
 }
 
-void World::add_agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
-                      std::unique_ptr<Controller> controller) {
-  agents_.push_back(std::make_unique<Agent>(scenario, seed, trial, std::move(controller), env_));
+void World::add_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                     std::unique_ptr<Controller> first, const ControllerFactory& factory) {
+  agents_.push_back(std::make_unique<Agent>(scenario, seed, trial, 0, std::move(first), env_));
+  for (int k = 1; k < scenario.team.count; ++k) {
+    agents_.push_back(std::make_unique<Agent>(
+        scenario, seed, trial, k, make_run_controller(scenario, seed, trial, factory, k), env_));
+  }
+  teams_.push_back(agents_.size());
 }
 
-void World::start(const Scenario& scenario) {
+void World::start(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
   warm_up(scenario, env_);
-  for (const auto& a : agents_) a->release();
+  for (std::size_t t = 0; t + 1 < teams_.size(); ++t) {
+    const Scenario& s = agents_[teams_[t]]->scenario();
+    if (s.team.count == 1 && s.start.region == StartRegion::kPoint &&
+        s.start.heading == StartHeading::kFixed) {
+      agents_[teams_[t]]->release();  // a robot alone at the paper's start: no draw
+      continue;
+    }
+    const std::vector<Pose> starts = team_starts(s, seed, trial, env_);
+    for (std::size_t k = 0; k < starts.size(); ++k) agents_[teams_[t] + k]->release(starts[k]);
+  }
   commands_.resize(agents_.size());
+  sent_from_.resize(agents_.size());
+  blocked_.resize(agents_.size());
 }
 
 void World::step() {
   if (done()) return;
   // environment: the wind, then the filaments move in it and new ones are released
   plumetrace::step(env_, dt_);
-  // every running robot senses and decides, then every one moves and is checked; robots do not
-  // see each other, so each takes exactly the step it would take alone
+  // every running robot senses and decides, then every one proposes its motion; contacts are
+  // resolved within each team on the proposals; then every one commits and is checked. Teams
+  // do not see each other, so each takes exactly the steps it would take alone
   const std::size_t n = agents_.size();
+  std::vector<char> running(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (!agents_[i]->done()) commands_[i] = agents_[i]->decide();
+    running[i] = !agents_[i]->done();
+    if (!running[i]) {
+      commands_[i].send = false;  // a robot whose run has ended says nothing
+      continue;
+    }
+    const RobotState& r = agents_[i]->robot();
+    sent_from_[i] = {r.pose.x, r.pose.y};
+    commands_[i] = agents_[i]->decide();
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (!agents_[i]->done()) agents_[i]->act(commands_[i]);
+    if (running[i]) agents_[i]->propose(commands_[i]);
+  }
+  for (std::size_t t = 0; t + 1 < teams_.size(); ++t) {
+    const std::size_t b = teams_[t], e = teams_[t + 1];
+    if (e - b < 2) continue;
+    if (agents_[b]->scenario().team.contact == TeamParams::Contact::kOn) resolve_contacts(b, e);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (running[i]) agents_[i]->commit();
+  }
+  for (std::size_t t = 0; t + 1 < teams_.size(); ++t) {
+    if (teams_[t + 1] - teams_[t] > 1) send_messages(teams_[t], teams_[t + 1]);
+  }
+}
+
+void World::resolve_contacts(std::size_t begin, std::size_t end) {
+  // why: a set rule, so the result does not depend on the agents' order: every robot of a pair
+  // whose bodies would overlap keeps its position (it turns as proposed); repeat until no two
+  // overlap. Positions before the step never overlap, so each round blocks at least one robot
+  // more or ends. Robots whose runs have ended are out of the arena
+  const double r = agents_[begin]->scenario().robot.radius;
+  const double d2 = 4.0 * r * r;
+  std::fill(blocked_.begin() + static_cast<std::ptrdiff_t>(begin),
+            blocked_.begin() + static_cast<std::ptrdiff_t>(end), 0);
+  std::vector<std::size_t> live;
+  for (std::size_t i = begin; i < end; ++i) {
+    if (!agents_[i]->done()) live.push_back(i);
+  }
+  std::vector<char> hit(end - begin);
+  for (;;) {
+    std::fill(hit.begin(), hit.end(), 0);
+    for (std::size_t a = 0; a < live.size(); ++a) {
+      const Vec2 pa = agents_[live[a]]->proposed_position();
+      for (std::size_t b = a + 1; b < live.size(); ++b) {
+        const Vec2 pb = agents_[live[b]]->proposed_position();
+        const double dx = pa.x - pb.x, dy = pa.y - pb.y;
+        if (dx * dx + dy * dy < d2) hit[live[a] - begin] = hit[live[b] - begin] = 1;
+      }
+    }
+    bool more = false;
+    for (const std::size_t i : live) {
+      if (hit[i - begin] && !blocked_[i] && agents_[i]->proposes_move()) {
+        blocked_[i] = 1;
+        more = true;
+      }
+    }
+    if (!more) break;
+    for (const std::size_t i : live) {
+      if (blocked_[i]) agents_[i]->block();
+    }
+  }
+}
+
+void World::send_messages(std::size_t begin, std::size_t end) {
+  // a message sent at step k reaches teammates in range at the first step at least team.delay
+  // later, and never before step k + 1
+  for (std::size_t i = begin; i < end; ++i) {
+    if (!commands_[i].send) continue;
+    const Agent& from = *agents_[i];
+    const TeamParams& team = from.scenario().team;
+    const auto lag = std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(std::ceil(team.delay / dt_ - 1e-9)));
+    const Message m{from.index(), from.time(), commands_[i].message};
+    for (std::size_t j = begin; j < end; ++j) {
+      if (j == i || agents_[j]->done() || !(agents_[j]->reads() & kReadsMessages)) continue;
+      const Vec2 p = sent_from_[j];
+      const double d = std::hypot(p.x - sent_from_[i].x, p.y - sent_from_[i].y);
+      if (d <= team.range) agents_[j]->receive(agents_[j]->steps() + lag, m);
+    }
   }
 }
 
@@ -206,13 +486,18 @@ std::vector<RunResult> World::results() const {
 
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
                    const StepObserver& observer, const ControllerFactory& factory) {
-  World world(scenario, seed, trial, make_run_controller(scenario, seed, trial, factory));
+  return run_team(scenario, seed, trial, observer, factory).front();
+}
+
+std::vector<RunResult> run_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                                const StepObserver& observer, const ControllerFactory& factory) {
+  World world({&scenario}, seed, trial, factory);
   if (observer) observer(world);
   while (!world.done()) {
     world.step();
     if (observer) observer(world);
   }
-  return world.result();
+  return world.results();
 }
 
 }  // namespace plumetrace

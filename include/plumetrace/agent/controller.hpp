@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <string_view>
+#include <vector>
 
 #include "plumetrace/agent/measurement.hpp"
 #include "plumetrace/core/config.hpp"
@@ -9,6 +10,38 @@
 #include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
+
+/// What a controller shows of its internal state for traces and the viewer (docs/agents.md,
+/// "Snapshots"): points with weights (particles, waypoints), a path, a grid of values (a belief
+/// map) and a point estimate, all in the controller's odometry frame. Empty by default.
+struct Snapshot {
+  /// Points (m, odometry frame): particles, candidate sources.
+  std::vector<Vec2> points;
+  /// One weight per point, or empty (equal weights).
+  std::vector<double> weights;
+  /// A polyline (m, odometry frame): a planned path.
+  std::vector<Vec2> path;
+  /// A grid of nx by ny values, row-major by y, cell (i, j) centred at (x0 + i dx, y0 + j dy)
+  /// in the odometry frame; empty when there is none.
+  std::vector<double> grid;
+  double x0 = 0.0;  ///< grid: first cell centre x (m)
+  double y0 = 0.0;  ///< grid: first cell centre y (m)
+  double dx = 1.0;  ///< grid: cell size along x (m)
+  double dy = 1.0;  ///< grid: cell size along y (m)
+  int nx = 0;       ///< grid: cells along x
+  int ny = 0;       ///< grid: cells along y
+  /// The controller's estimate of the source (m, odometry frame), when it has one.
+  bool has_estimate = false;
+  Vec2 estimate;  ///< the estimate when has_estimate
+
+  /// True when there is nothing to draw.
+  bool empty() const { return points.empty() && path.empty() && grid.empty() && !has_estimate; }
+};
+
+/// The most numbers one snapshot may hold (points count 2, grid cells 1). why: traces record a
+/// snapshot at every filament snapshot; a grid of a million cells a frame would make traces of
+/// gigabytes.
+inline constexpr std::size_t kMaxSnapshotValues = 200'000;
 
 /// A plume-tracking algorithm: turns measurements into motion commands.
 /// why: controllers include only geometry and measurement (and config, for their params' keys),
@@ -22,6 +55,11 @@ class Controller {
   virtual std::string_view state() const = 0;
   /// Number of times the plume was declared lost so far.
   virtual int losses() const = 0;
+  /// What the controller reads besides the binary odor, time, odometry and the wind probe
+  /// (Reads flags); the paper's controllers read nothing more.
+  virtual unsigned reads() const { return kReadsBinary; }
+  /// Its internal state for traces and the viewer; called only when a trace records it.
+  virtual Snapshot snapshot() const { return {}; }
 };
 
 /// The longest state name a controller may report (bytes). why: traces store the name of every

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <memory>
+
 #include "plumetrace/agent/measurement.hpp"
+#include "plumetrace/agent/sensor_models.hpp"
 #include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
@@ -9,7 +12,9 @@
 
 namespace plumetrace {
 
-/// Binary odor sensor (docs/model.md section 4.7).
+/// The odor sensor (docs/model.md section 4.7; docs/agents.md, "Sensor models"): a sensor model
+/// turns the concentration at the sensor into a reading; the binary odor is the reading's
+/// threshold test.
 struct OdorSensorParams {
   /// Concentration at or above which odor is perceived.
   double threshold = 100.0;
@@ -17,14 +22,31 @@ struct OdorSensorParams {
   /// up with the release centre at the floor (docs/fidelity.md, unknown 8 and "Which reading
   /// won").
   double height = 0.07;
+  /// The sensor model. why: "ideal", the paper's binary sensor, which perceives the
+  /// concentration at once and without noise.
+  SensorModel model = SensorModel::kIdeal;
+  /// The params of every registered sensor model.
+  FamilyParams<SensorModelRegistry> models;
 
-  /// The config keys (core/config.hpp).
-  template <class V>
-  void fields(V& v) {
-    v("threshold", threshold, "concentration at which odor is perceived", kPositive);
-    v("height", height, "odor and wind sensor height (m)", kAnyNumber);
+  /// The params struct P (FirstOrderSensorParams, ...) of its model.
+  template <class P>
+  P& get() {
+    return models.get<P>(sensor_model_registry());
   }
+  /// The params struct P of its model.
+  template <class P>
+  const P& get() const {
+    return models.get<P>(sensor_model_registry());
+  }
+
+  /// The config keys: threshold, height, model, then the table of every sensor model.
+  void fields(FieldVisitor& v);
+  /// Reads the config keys without writing.
+  void read_fields(FieldReader& v) const;
 };
+
+/// Builds the sensor model of a robot's odor sensor with its random stream.
+std::unique_ptr<OdorSensorModel> make_sensor_model(const OdorSensorParams& params, Rng rng);
 
 /// Wind-direction sensor (paper eqs. 6-7).
 struct WindSensorParams {

@@ -11,6 +11,8 @@ enum class Stream : std::uint64_t {
   kController = 3,     ///< the controller's own choices (initial side, tie breaks)
   kWind = 4,           ///< the wind field's own randomness (a constant wind draws none)
   kVirtualSensor = 5,  ///< the plume statistics' virtual surges (their wind readings, side guesses)
+  kOdorSensor = 6,     ///< the odor sensor model's noise
+  kStart = 7,          ///< a robot's start drawn from a region, and its heading
 };
 
 /// One step of the SplitMix64 sequence: advances state and returns a well-mixed 64-bit value.
@@ -18,6 +20,11 @@ std::uint64_t splitmix64(std::uint64_t& state);
 
 /// Derives the seed of one stream from (master seed, trial index, stream).
 std::uint64_t derive_seed(std::uint64_t master_seed, std::uint64_t trial, Stream stream);
+
+/// Derives the seed of one robot's stream: agent 0's is derive_seed(master, trial, stream), so a
+/// robot alone draws what it always drew; every other agent's is mixed from it and its index.
+std::uint64_t derive_seed(std::uint64_t master_seed, std::uint64_t trial, Stream stream,
+                          int agent);
 
 /// xoshiro256** generator with our own uniform and normal samplers, identical on every platform.
 class Rng {

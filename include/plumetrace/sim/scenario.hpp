@@ -62,12 +62,32 @@ inline WindRegion wind_region(const ArenaParams& arena) {
   return {arena.x_min, arena.x_max, arena.y_min, arena.y_max};
 }
 
+/// What ends a run in success (docs/agents.md, "Source declaration").
+enum class SuccessRule {
+  kReach,    ///< reaching the source (the paper's ideal supervisor); a declaration is scored too
+  kDeclare,  ///< only a declaration within supervisor.declaration_radius of the source
+};
+
+/// What the arena's walls do (docs/agents.md, "Walls").
+enum class WallRule {
+  kEnd,    ///< touching a wall ends the run as a failure (the paper)
+  kBlock,  ///< a wall only blocks the robot: a move into it is not made
+};
+
 /// When a run ends (docs/model.md section 8).
 struct SupervisorParams {
   /// Success once the robot centre is this close to the source centre in (x, y) (m).
   double success_radius = 0.185;
   /// Simulated time after release at which the run fails (s).
   double timeout = 1200.0;
+  /// What ends a run in success. why: "reach", the paper's ideal supervisor.
+  SuccessRule success = SuccessRule::kReach;
+  /// A declaration this close to the source centre (m) is a success, any other a
+  /// "wrong_declaration". why: 0.5 m, a little over two body lengths of the Khepera III.
+  double declaration_radius = 0.5;
+  /// What the walls do. why: "end", the paper's ("we considered the experiment a failure if the
+  /// robot hit a wall").
+  WallRule walls = WallRule::kEnd;
 
   /// The config keys (core/config.hpp).
   template <class V>
@@ -75,6 +95,122 @@ struct SupervisorParams {
     v("success_radius", success_radius,
       "success once this close to the source centre (m; 0 only with a solid source)", kNonNegative);
     v("timeout", timeout, "run time limit after release (s)", kPositive);
+    v("success", success, "what ends a run in success: reach the source, or declare it",
+      {"reach", "declare"});
+    v("declaration_radius", declaration_radius,
+      "a declared source this close to the true one is a success (m)",
+      NumberSpec{.min = 0.0, .max = 1e3, .min_open = true});
+    v("walls", walls, "what touching a wall does: end the run, or block the robot",
+      {"end", "block"});
+  }
+};
+
+/// The most robots one team may have. why: item 7's benchmark goes to 100; every robot of a team
+/// is checked against every other for contacts each step (N^2 / 2 pairs).
+inline constexpr int kMaxTeam = 1000;
+
+/// Several robots on one plume (docs/agents.md, "Teams").
+struct TeamParams {
+  /// Robots released together, all running controller.algorithm with its params.
+  int count = 1;
+  /// Lateral spacing between the robots' starts when start.region is "point" (m): robot 0 at
+  /// the start, robot k at k/2 spacings to its left (k odd) or right (k even), rounded up.
+  /// why: 0.3 m, two body diameters and a little.
+  double spacing = 0.3;
+  /// Whether robot bodies collide.
+  enum class Contact { kOff, kOn };
+  /// Whether robot bodies collide. why: "on": robots are bodies.
+  Contact contact = Contact::kOn;
+  /// Range of a broadcast message (m): teammates farther than this when it is sent do not get
+  /// it. why: inf, every teammate.
+  double range = INFINITY;
+  /// Delay of a message (s): it is delivered at the first step at least this long after it was
+  /// sent, and never the step it was sent. why: 0, the next step.
+  double delay = 0.0;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("count", count, "robots released together", IntegerSpec{1, kMaxTeam});
+    v("spacing", spacing, "lateral spacing of the robots' starts at a point start (m)",
+      kNonNegative);
+    v("contact", contact, "whether robot bodies collide", {"off", "on"});
+    v("range", range, "range of a broadcast message (m)",
+      NumberSpec{.min = 0.0, .allow_infinite = true});
+    v("delay", delay, "delay of a message (s)", NumberSpec{.min = 0.0, .max = 1e6});
+  }
+};
+
+/// Where a robot starts (docs/agents.md, "Start distributions").
+enum class StartRegion {
+  kPoint,      ///< robot.start_x, robot.start_y (the paper)
+  kRectangle,  ///< uniform in start.x_min..x_max by start.y_min..y_max
+  kDisc,       ///< uniform in the disc of start.radius around (start.cx, start.cy)
+};
+
+/// The frame a start region is given in.
+enum class StartFrame {
+  kSource,  ///< relative to the source centre
+  kArena,   ///< the arena's own coordinates
+};
+
+/// Whether a start must be in odor.
+enum class StartCondition {
+  kAny,     ///< anywhere in the region
+  kInOdor,  ///< where the odor sensor perceives odor at release
+};
+
+/// Which way a robot faces at release.
+enum class StartHeading {
+  kFixed,   ///< robot.start_heading_deg
+  kRandom,  ///< uniform in [-180, 180) degrees
+};
+
+/// The most draws a robot's start may take (a region mostly outside odor, crowded, or blocked).
+inline constexpr int kMaxStartDraws = 100'000;
+
+/// Start distributions: a region, its frame, a condition and the heading (docs/agents.md).
+struct StartParams {
+  /// The region. why: "point", the paper's single start.
+  StartRegion region = StartRegion::kPoint;
+  /// The frame of the region's keys. why: "source", so a region follows the source.
+  StartFrame frame = StartFrame::kSource;
+  /// Rectangle: upwind edge (m). why: the rectangle's defaults, in the source's frame, span
+  /// 10-14.5 m downwind (the paper's start is at 14.5 m) across 3 m of the 4 m wide arena,
+  /// 0.5 m clear of each wall: in the paper's arena the plume, about 1 m wide there, covers a
+  /// third of it, so most starts are outside odor (plume finding).
+  double x_min = 10.0;
+  double x_max = 14.5;  ///< rectangle: downwind edge (m)
+  double y_min = -1.5;  ///< rectangle: right edge (m)
+  double y_max = 1.5;   ///< rectangle: left edge (m)
+  /// Disc: centre x (m). why: the disc's defaults, 12 m downwind with a radius of 1.5 m, fit
+  /// the paper's arena 0.5 m clear of its walls.
+  double cx = 12.0;
+  double cy = 0.0;      ///< disc: centre y (m)
+  double radius = 1.5;  ///< disc: radius (m)
+  /// Whether the start must be in odor. why: "any".
+  StartCondition condition = StartCondition::kAny;
+  /// The heading at release. why: "fixed", robot.start_heading_deg.
+  StartHeading heading = StartHeading::kFixed;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("region", region, "where robots start: a point (robot.start_x, _y), a rectangle or a disc",
+      {"point", "rectangle", "disc"});
+    v("frame", frame, "frame of the region's keys: relative to the source, or the arena's",
+      {"source", "arena"});
+    v("x_min", x_min, "rectangle: smallest x (m)", kAnyNumber);
+    v("x_max", x_max, "rectangle: largest x (m)", kAnyNumber);
+    v("y_min", y_min, "rectangle: smallest y (m)", kAnyNumber);
+    v("y_max", y_max, "rectangle: largest y (m)", kAnyNumber);
+    v("cx", cx, "disc: centre x (m)", kAnyNumber);
+    v("cy", cy, "disc: centre y (m)", kAnyNumber);
+    v("radius", radius, "disc: radius (m)", kPositive);
+    v("condition", condition, "a start must be anywhere in the region, or in odor at release",
+      {"any", "in_odor"});
+    v("heading", heading, "heading at release: robot.start_heading_deg, or uniform at random",
+      {"fixed", "random"});
   }
 };
 
@@ -88,6 +224,8 @@ struct Scenario {
   OdorSensorParams odor;         ///< odor sensor
   WindSensorParams wind_sensor;  ///< wind sensor
   RobotParams robot;             ///< the robot and its start
+  StartParams start;             ///< start distributions
+  TeamParams team;               ///< several robots on one plume
   SupervisorParams supervisor;   ///< when a run ends
   ControllerParams controller;   ///< algorithm and its parameters
 

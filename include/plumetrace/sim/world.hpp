@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "plumetrace/agent/controller.hpp"
@@ -16,32 +17,62 @@
 
 namespace plumetrace {
 
-/// The supervisor's verdict on a robot state at run time t (s): success, wall, timeout or running.
+/// The supervisor's verdict on a robot state at run time t (s): success, wall, timeout or
+/// running, under the scenario's supervisor.success and supervisor.walls rules (a declaration is
+/// scored apart, by Agent).
 Outcome supervise(const Scenario& scenario, const RobotState& robot, double t);
 
 /// The robot side of one run: robot, sensors, controller and metrics, in an environment that
 /// is stepped outside it. Its sensors read that environment's own wind and odor objects; robots
-/// do not disturb the environment, so several Agents can share one.
+/// do not disturb the environment, so several Agents can share one. Agent `index` of a team has
+/// its own random streams (derive_seed with the agent index: agent 0 draws what a robot alone
+/// always drew).
 class Agent {
  public:
-  /// An agent of the scenario with its random streams from (seed, trial), at its start pose, its
+  /// Agent `index` of the scenario's team with its random streams from (seed, trial, index), its
   /// sensors bound to `env` (which must outlive it).
-  Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+  Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial, int index,
         std::unique_ptr<Controller> controller, const Environment& env);
+  /// Agent 0 (a robot alone).
+  Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+        std::unique_ptr<Controller> controller, const Environment& env)
+      : Agent(scenario, seed, trial, 0, std::move(controller), env) {}
   Agent(const Agent&) = delete;
   Agent& operator=(const Agent&) = delete;
 
-  /// Releases the robot into the environment as it is now (after the warm-up).
-  void release();
+  /// Releases the robot at `start` (m, rad) into the environment as it is now (after the
+  /// warm-up); its odometry frame is that pose.
+  void release(const Pose& start);
+  /// Releases the robot at the scenario's start (robot.start_x, _y, _heading_deg).
+  void release() { release(scenario_.robot.start); }
   /// The first half of a step, after the environment has made its own: sense, then the
-  /// controller's decision. Follow with act().
+  /// controller's decision. Follow with act(), or propose() and commit().
   Command decide();
   /// Sensing alone, for callers that decide outside a Controller (learning agents): what a
-  /// controller would see. Follow with act().
-  Observation sense();
+  /// controller would see, the concentration included when `reads` asks for it. Follow with
+  /// act().
+  Observation sense(unsigned reads);
+  /// Sensing with what the controller reads.
+  Observation sense() { return sense(reads_); }
   /// The second half of a step: the decision (headings in the odometry frame), then move and
-  /// check.
-  void act(Command command);
+  /// check. propose() then commit().
+  void act(const Command& command) {
+    propose(command);
+    commit();
+  }
+  /// The motion of a command, not yet made: a give-up or a declaration ends the run here; a
+  /// move into a wall that blocks (supervisor.walls = "block") is not made.
+  void propose(Command command);
+  /// True when this step's proposal moves the robot's centre (a contact may block it).
+  bool proposes_move() const { return moving_; }
+  /// Where the proposal puts the robot's centre.
+  Vec2 proposed_position() const { return {proposed_.pose.x, proposed_.pose.y}; }
+  /// Blocks this step's move (a contact): the robot keeps its position, turns as proposed.
+  void block();
+  /// Makes the proposed motion and checks the run (nothing after a give-up or declaration).
+  void commit();
+  /// Queues a teammate's message, delivered at the sense of step `step` (Agent::steps()).
+  void receive(std::int64_t step, const Message& message);
   /// The wind sensor, for a decision made outside a Controller (one noisy sample per call).
   WindProbe& wind_probe() { return wind_sensor_; }
 
@@ -51,36 +82,73 @@ class Agent {
   RunResult result() const;
   /// Time since release (s).
   double time() const { return static_cast<double>(steps_) * scenario_.sim.dt; }
+  /// Steps since release.
+  std::int64_t steps() const { return steps_; }
+  /// Its index in its team.
+  int index() const { return index_; }
   /// The scenario in use.
   const Scenario& scenario() const { return scenario_; }
   /// The robot's true state.
   const RobotState& robot() const { return robot_; }
+  /// Where it was released (m, rad): the origin of its odometry.
+  const Pose& start() const { return start_; }
   /// The controller.
   const Controller& controller() const { return *controller_; }
+  /// What its controller reads (Reads flags).
+  unsigned reads() const { return reads_; }
   /// The wind sensor (samples taken this step).
   const WindSensor& wind_sensor() const { return wind_sensor_; }
   /// Odor perceived at the last step.
   bool odor() const { return odor_; }
+  /// The odor sensor's reading at the last step where it was computed (NaN where the binary
+  /// test alone was needed).
+  double reading() const { return reading_; }
   /// Where the odor sensor sampled the plume at the last step.
   const Vec3& sensed_at() const { return sensed_at_; }
   /// How the run ended (kRunning while it goes on).
   Outcome outcome() const { return outcome_; }
+  /// Where it declared the source (m, world frame), NaN when it has not.
+  Vec2 declared() const { return declared_; }
 
  private:
+  void sense_odor_now(unsigned reads);
+
   Scenario scenario_;
   std::uint64_t seed_;
   std::uint64_t trial_;
+  int index_;
   const Environment& env_;
+  Pose start_;
   RobotState robot_;
+  RobotState proposed_;
+  bool moving_ = false;
+  bool ended_ = false;  // a give-up or declaration this step
   Rng wind_rng_;
   WindSensor wind_sensor_;
+  std::unique_ptr<OdorSensorModel> sensor_model_;
   std::unique_ptr<Controller> controller_;
+  unsigned reads_;
   std::int64_t steps_ = 0;
   std::int64_t odor_steps_ = 0;
   Vec3 sensed_at_;
   bool odor_ = false;
+  double reading_ = NAN;
+  double t_first_odor_ = NAN;
+  double d_first_odor_ = NAN;
+  Vec2 declared_{NAN, NAN};
+  double declaration_error_ = NAN;
+  std::vector<std::pair<std::int64_t, Message>> pending_;  // (delivery step, message)
+  std::vector<Message> inbox_;                             // delivered this step
   Outcome outcome_ = Outcome::kRunning;
 };
+
+/// Where the robots of a scenario's team are released (m, rad), robot 0 first: at a point start
+/// robot 0 at robot.start and the others beside it (team.spacing), else drawn from start.region
+/// with each robot's own start stream, under start.condition, clear of the walls, the solid
+/// source, the success radius and (with team.contact on) the robots drawn before it. Throws
+/// ConfigError naming the start keys when no start is found in kMaxStartDraws draws.
+std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                              const Environment& env);
 
 /// Builds a run's controller from its scenario and its controller stream; the extension point
 /// for controllers of your own (C++ or Python), used by runs and sweeps alike.
@@ -90,7 +158,8 @@ using ControllerFactory = std::function<std::unique_ptr<Controller>(const Scenar
 /// algorithm; either gets the run's controller stream.
 std::unique_ptr<Controller> make_run_controller(const Scenario& scenario, std::uint64_t seed,
                                                 std::uint64_t trial,
-                                                const ControllerFactory& factory = {});
+                                                const ControllerFactory& factory = {},
+                                                int agent = 0);
 
 /// The environment of a scenario and trial (its wind and its filament plume, each with its own
 /// random stream), before its warm-up.
@@ -114,16 +183,19 @@ class World {
   /// up for the scenario's sim.warmup.
   World(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
         std::unique_ptr<Controller> controller, Environment env);
-  /// One agent per scenario in one environment, the first scenario's, warmed up; the scenarios
-  /// must agree on everything the environment depends on (`plume_key`, sweep.hpp). Each agent
-  /// takes exactly the steps it would take alone.
+  /// One team per scenario (team.count agents each) in one environment, the first scenario's,
+  /// warmed up; the scenarios must agree on everything the environment depends on (`plume_key`,
+  /// sweep.hpp). Teams do not see each other: each takes exactly the steps it would take alone.
   World(const std::vector<const Scenario*>& scenarios, std::uint64_t seed, std::uint64_t trial,
         const ControllerFactory& factory = {});
   World(const World&) = delete;
   World& operator=(const World&) = delete;
 
-  /// One step (docs/model.md section 2): the environment, then every running agent senses and
-  /// decides, then every one moves and is checked. Does nothing once every agent is done.
+  /// One step (docs/model.md section 2; docs/agents.md, "One step of a team"): the
+  /// environment; every running agent senses and decides; every one proposes its motion;
+  /// contacts within each team are resolved; every one commits and is checked; messages sent
+  /// this step are queued for delivery. Results do not depend on the order of the agents. Does
+  /// nothing once every agent is done.
   void step();
   /// A step of a one-agent world split for a decision made outside the controller: the
   /// environment and sensing ...
@@ -136,8 +208,11 @@ class World {
   bool done() const;
   /// Agent 0's metrics so far.
   RunResult result() const { return agents_.front()->result(); }
-  /// Every agent's metrics so far, in the order of the scenarios.
+  /// Every agent's metrics so far: the scenarios' teams in order, each robot 0 first.
   std::vector<RunResult> results() const;
+  /// The first agent of each team, and one past the last: team t is agents [teams()[t],
+  /// teams()[t + 1]).
+  const std::vector<std::size_t>& teams() const { return teams_; }
 
   /// The number of agents.
   std::size_t agent_count() const { return agents_.size(); }
@@ -164,22 +239,32 @@ class World {
   Outcome outcome() const { return agents_.front()->outcome(); }
 
  private:
-  void add_agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
-                 std::unique_ptr<Controller> controller);
-  void start(const Scenario& scenario);
+  void add_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                std::unique_ptr<Controller> first, const ControllerFactory& factory);
+  void start(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
+  void resolve_contacts(std::size_t begin, std::size_t end);
+  void send_messages(std::size_t begin, std::size_t end);
 
   Environment env_;
   double dt_;
+  std::vector<std::size_t> teams_{0};
   std::vector<std::unique_ptr<Agent>> agents_;
   std::vector<Command> commands_;  // this step's decisions, one per agent
+  std::vector<Vec2> sent_from_;    // where each agent was when it decided
+  std::vector<char> blocked_;      // contact resolution: the agent's move is blocked
 };
 
 /// Called after the warm-up and after every step of a run.
 using StepObserver = std::function<void(const World&)>;
 
 /// Runs one whole run: a pure function of (scenario, seed, trial) and the controller factory
-/// (empty: the scenario's built-in algorithm).
+/// (empty: the scenario's built-in algorithm). Robot 0's result (the run's, for a robot alone).
 RunResult run_once(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
                    const StepObserver& observer = {}, const ControllerFactory& factory = {});
+
+/// Runs one whole run of the scenario's team: every robot's result, robot 0 first.
+std::vector<RunResult> run_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
+                                const StepObserver& observer = {},
+                                const ControllerFactory& factory = {});
 
 }  // namespace plumetrace

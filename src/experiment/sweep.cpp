@@ -150,15 +150,25 @@ std::string plume_key(const Scenario& scenario) {
   return hash_text(scenario_to_toml(p, ConfigKeys::kOfTheRun));
 }
 
-std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
-                                  std::uint64_t trial, const ControllerFactory& factory) {
-  if (scenarios.empty()) return {};
+namespace {
+
+// why: teams that meet one World must meet one plume, or results would depend on the grouping
+void check_one_plume(const std::vector<const Scenario*>& scenarios, const char* who) {
+  if (scenarios.size() < 2) return;
   const std::string key = plume_key(*scenarios.front());
   for (const Scenario* s : scenarios) {
     if (plume_key(*s) != key) {
-      throw std::invalid_argument("run_shared: the scenarios do not share one plume");
+      throw std::invalid_argument(std::string(who) + ": the scenarios do not share one plume");
     }
   }
+}
+
+}  // namespace
+
+std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
+                                  std::uint64_t trial, const ControllerFactory& factory) {
+  if (scenarios.empty()) return {};
+  check_one_plume(scenarios, "run_shared");
   // one environment, every robot in it, in lockstep
   World world(scenarios, seed, trial, factory);
   while (!world.done()) world.step();
@@ -214,16 +224,20 @@ std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const Ta
   }
   const RunTask& first = group.front();
   const std::uint64_t seed = sweeps[static_cast<std::size_t>(first.sweep)].def.seed;
-  const std::vector<RunResult> results =
-      scenarios.size() == 1
-          ? std::vector<RunResult>{run_once(*scenarios[0], seed, first.trial, {}, factory)}
-          : run_shared(scenarios, seed, first.trial, factory);
+  check_one_plume(scenarios, "run_group");
+  // one environment, every task's team in it, in lockstep
+  World world(scenarios, seed, first.trial, factory);
+  while (!world.done()) world.step();
+  const std::vector<RunResult> results = world.results();
   std::vector<RunRow> rows;
-  for (std::size_t k = 0; k < results.size(); ++k) {
+  rows.reserve(results.size());
+  for (std::size_t k = 0; k < group.size(); ++k) {
     const ExpandedSweep& sweep = sweeps[static_cast<std::size_t>(group[k].sweep)];
     const SweepPoint& point = sweep.points[static_cast<std::size_t>(group[k].point)];
-    rows.push_back({sweep.def.name, point.index, group[k].trial, results[k].agent, point.config_hash,
-                    results[k]});
+    for (std::size_t a = world.teams()[k]; a < world.teams()[k + 1]; ++a) {
+      rows.push_back({sweep.def.name, point.index, group[k].trial, results[a].agent,
+                      point.config_hash, results[a]});
+    }
   }
   return rows;
 }

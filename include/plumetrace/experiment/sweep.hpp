@@ -108,9 +108,10 @@ std::string hash_text(const std::string& text);
 /// this key and whose (seed, trial) match meet bit for bit the same plume).
 std::string plume_key(const Scenario& scenario);
 
-/// Runs several agents in one shared environment, a World of one agent per scenario
-/// (docs/model.md section 10: the plume does not depend on the robot); every scenario must have
-/// the same plume_key. The results equal run_once of each scenario, bit for bit.
+/// Runs several teams in one shared environment, a World of one team per scenario (docs/model.md
+/// section 10: the plume does not depend on the robots); every scenario must have the same
+/// plume_key. The results, every team's robots in order, equal run_team of each scenario, bit
+/// for bit.
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
                                   std::uint64_t trial, const ControllerFactory& factory = {});
 
@@ -199,7 +200,7 @@ std::vector<TaskGroup> plume_groups(const std::vector<ExpandedSweep>& sweeps,
 /// work (each part simulates its plume again: the same rows, more work); otherwise unchanged.
 std::vector<TaskGroup> split_groups(std::vector<TaskGroup> groups, std::size_t wanted);
 
-/// Runs a group on one shared plume (run_once for a group of one): its rows in task order.
+/// Runs a group on one shared plume: its rows in task order, each task's robots in index order.
 std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const TaskGroup& group,
                               const ControllerFactory& factory);
 

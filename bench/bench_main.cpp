@@ -116,6 +116,52 @@ void BM_WholeRun(benchmark::State& state) {
 }
 BENCHMARK(BM_WholeRun)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
 
+// casting that also reads the concentration, so that each step sums every filament near the
+// sensor rather than stopping at the threshold
+class ReadingCasting final : public Controller {
+ public:
+  explicit ReadingCasting(std::unique_ptr<Controller> inner) : inner_(std::move(inner)) {}
+  Command step(const Observation& obs, WindProbe& wind) override {
+    benchmark::DoNotOptimize(obs.concentration);
+    return inner_->step(obs, wind);
+  }
+  std::string_view state() const override { return inner_->state(); }
+  int losses() const override { return inner_->losses(); }
+  unsigned reads() const override { return kReadsConcentration; }
+
+ private:
+  std::unique_ptr<Controller> inner_;
+};
+
+// one step of a World with a team of N robots (range 0) casting on one plume, with the binary
+// sensor (range 1 = 0) or reading the concentration (1), contacts on; the robots start spread
+// over the default start rectangle, walls block and only a declaration ends a run, so the team
+// stays whole. The marginal cost of a robot is (T(N) - T(1)) / (N - 1) (docs/performance.md)
+void BM_TeamStep(benchmark::State& state) {
+  Scenario s;
+  s.team.count = static_cast<int>(state.range(0));
+  s.start.region = StartRegion::kRectangle;
+  s.supervisor.walls = WallRule::kBlock;
+  s.supervisor.success = SuccessRule::kDeclare;
+  s.supervisor.timeout = 1e5;
+  validate(s);
+  const bool reading = state.range(1) != 0;
+  state.SetLabel(std::to_string(s.team.count) + (reading ? " robots, concentration"
+                                                         : " robots, binary"));
+  ControllerFactory factory;
+  if (reading) {
+    factory = [](const Scenario& sc, Rng rng) -> std::unique_ptr<Controller> {
+      return std::make_unique<ReadingCasting>(make_controller(sc.controller, rng));
+    };
+  }
+  World world({&s}, 1, 0, factory);
+  for (auto _ : state) world.step();
+  state.counters["per_robot_step"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * static_cast<double>(s.team.count),
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_TeamStep)->ArgsProduct({{1, 10, 100}, {0, 1}});
+
 // rows as a sweep makes them: one point, consecutive trials from `first`
 std::vector<RunRow> sample_rows(std::size_t count, std::uint64_t first) {
   std::vector<RunRow> rows(count);

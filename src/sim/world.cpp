@@ -371,6 +371,9 @@ void World::start(const Scenario& scenario, std::uint64_t seed, std::uint64_t tr
   commands_.resize(agents_.size());
   sent_from_.resize(agents_.size());
   blocked_.resize(agents_.size());
+  running_.resize(agents_.size());
+  hit_.resize(agents_.size());
+  live_.reserve(agents_.size());
 }
 
 void World::step() {
@@ -381,7 +384,7 @@ void World::step() {
   // resolved within each team on the proposals; then every one commits and is checked. Teams
   // do not see each other, so each takes exactly the steps it would take alone
   const std::size_t n = agents_.size();
-  std::vector<char> running(n);
+  std::vector<char>& running = running_;
   for (std::size_t i = 0; i < n; ++i) {
     running[i] = !agents_[i]->done();
     if (!running[i]) {
@@ -417,24 +420,27 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
   const double d2 = 4.0 * r * r;
   std::fill(blocked_.begin() + static_cast<std::ptrdiff_t>(begin),
             blocked_.begin() + static_cast<std::ptrdiff_t>(end), 0);
-  std::vector<std::size_t> live;
+  // why: members, so that a step allocates nothing once the first has sized them
+  std::vector<std::size_t>& live = live_;
+  live.clear();
   for (std::size_t i = begin; i < end; ++i) {
     if (!agents_[i]->done()) live.push_back(i);
   }
-  std::vector<char> hit(end - begin);
+  std::vector<char>& hit = hit_;
   for (;;) {
-    std::fill(hit.begin(), hit.end(), 0);
+    std::fill(hit.begin() + static_cast<std::ptrdiff_t>(begin),
+              hit.begin() + static_cast<std::ptrdiff_t>(end), 0);
     for (std::size_t a = 0; a < live.size(); ++a) {
       const Vec2 pa = agents_[live[a]]->proposed_position();
       for (std::size_t b = a + 1; b < live.size(); ++b) {
         const Vec2 pb = agents_[live[b]]->proposed_position();
         const double dx = pa.x - pb.x, dy = pa.y - pb.y;
-        if (dx * dx + dy * dy < d2) hit[live[a] - begin] = hit[live[b] - begin] = 1;
+        if (dx * dx + dy * dy < d2) hit[live[a]] = hit[live[b]] = 1;
       }
     }
     bool more = false;
     for (const std::size_t i : live) {
-      if (hit[i - begin] && !blocked_[i] && agents_[i]->proposes_move()) {
+      if (hit[i] && !blocked_[i] && agents_[i]->proposes_move()) {
         blocked_[i] = 1;
         more = true;
       }

@@ -252,6 +252,9 @@ class World {
   std::vector<Command> commands_;  // this step's decisions, one per agent
   std::vector<Vec2> sent_from_;    // where each agent was when it decided
   std::vector<char> blocked_;      // contact resolution: the agent's move is blocked
+  std::vector<char> running_;      // this step: the agent's run had not ended
+  std::vector<char> hit_;          // contact resolution: the agent's body would overlap
+  std::vector<std::size_t> live_;  // contact resolution: the team's running agents
 };
 
 /// Called after the warm-up and after every step of a run.

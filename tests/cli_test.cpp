@@ -141,6 +141,17 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"probe --trials 3", "--trials requires --plume-stats"},
       {"probe --plume-stats --offsets 0,x", "--offsets: '0,x'"},
       {"probe --plume-stats --turns 200", "--turns"},
+      // issue 24, item 8: teams, starts, sensors and declarations
+      {"run --set team.count=0", "team.count"},
+      {"run --set team.count=1001", "team.count"},
+      {"run --set team.count=2 --set team.spacing=0.1", "team.spacing"},
+      {"run --set team.count=30", "team.count"},
+      {"run --set start.region=disc --set start.cy=9", "start.cx, start.cy, start.radius"},
+      {"run --set start.region=rectangle --set team.count=200", "team.count"},
+      {"run --set team.range=-1", "team.range"},
+      {"run --set team.delay=-1", "team.delay"},
+      {"run --set odor.model=mox", "odor.model"},
+      {"run --set supervisor.declaration_radius=0", "supervisor.declaration_radius"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);

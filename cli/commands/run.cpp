@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <vector>
 
 #include "commands.hpp"
 #include "plumetrace/core/files.hpp"
@@ -21,9 +22,11 @@ std::string fixed(double v, int digits) {
   return buf;
 }
 
-void print_human(const RunResult& r, const RunInfo& info) {
+void print_human(const RunResult& r, const RunInfo& info, int team) {
   std::cout << "plumetrace " << version() << ": " << info.algorithm << ", seed " << info.seed
-            << ", trial " << info.trial << "\n"
+            << ", trial " << info.trial;
+  if (team > 1) std::cout << ", robot " << r.agent << " of " << team;
+  std::cout << "\n"
             << "  outcome   " << outcome_name(r.outcome) << "\n"
             << "  time      " << fixed(r.time, 2) << " s\n"
             << "  d_t       " << fixed(r.d_t, 3) << " m (path length)\n"
@@ -31,6 +34,9 @@ void print_human(const RunResult& r, const RunInfo& info) {
             << "  overhead  " << fixed(r.overhead, 3) << " (d_t / d_u)\n"
             << "  losses    " << r.losses << "\n"
             << "  in odor   " << fixed(100.0 * r.odor_fraction, 1) << " % of steps\n";
+  if (!std::isnan(r.declaration_error)) {
+    std::cout << "  declared  " << fixed(r.declaration_error, 3) << " m from the source\n";
+  }
 }
 
 }  // namespace
@@ -70,12 +76,16 @@ int RunCommand::run() {
         view_path.empty() || snapshot_option->count() > 0 ? snapshot_interval : 0.25;
     observer = TraceRecorder(trace, interval, s.sim.dt);
   }
-  const RunResult result = run_once(s, seed_value, trial_value, observer);
-  // print the result before writing the trace, so a failing write loses nothing computed
-  if (json) {
-    std::cout << result_to_json(result, info) << std::endl;
-  } else {
-    print_human(result, info);
+  const std::vector<RunResult> results = run_team(s, seed_value, trial_value, observer);
+  const RunResult& result = results.front();
+  // print the results before writing the trace, so a failing write loses nothing computed; a
+  // robot alone prints what it always did, a team one line (JSON) or block per robot
+  for (const RunResult& r : results) {
+    if (json) {
+      std::cout << result_to_json(r, info) << std::endl;
+    } else {
+      print_human(r, info, s.team.count);
+    }
   }
   if (!trace_path.empty()) {
     write_trace(trace_path, trace, s, result, info);

@@ -13,6 +13,7 @@
 #include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/exports.hpp"
@@ -353,7 +354,7 @@ TEST(Campaign, OneAndTwoThreadsGiveIdenticalRows) {
 TEST(Campaign, OneAndTwoThreadsGiveIdenticalRowsInTheMeanderingWind) {
   std::string text = kQuickSweep;
   const std::string set = "[set]\n";
-  text.insert(text.find(set) + set.size(), "wind.model = \"meander\"\nwind.meander_gain = 0.3\n");
+  text.insert(text.find(set) + set.size(), "wind.model = \"meander\"\nmeander.gain = 0.3\n");
   const std::vector<ExpandedSweep> sweeps = {expand_sweep(read_sweep_file(write_sweep(text)), {})};
   ASSERT_EQ(sweeps[0].points[0].scenario.wind.model, WindModel::kMeander);
   const auto one = run_fresh(sweeps, 1);
@@ -425,8 +426,11 @@ TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
   a.wind.model = b.wind.model = WindModel::kMeander;
   EXPECT_NE(plume_key(a), plume_key(b));  // the wind's grid covers the arena
   b = a;
-  b.wind.meander.gain = 0.2;
+  b.wind.get<MeanderParams>().gain = 0.2;
   EXPECT_NE(plume_key(a), plume_key(b));
+  // the constant wind's plume does not see the meander's keys
+  a.wind.model = b.wind.model = WindModel::kConstant;
+  EXPECT_EQ(plume_key(a), plume_key(b));
 }
 
 TEST(Campaign, SharedAndSeparatePlumesGiveIdenticalRows) {

@@ -104,8 +104,9 @@ std::string axis_values_text(const SweepDef& def, const SweepPoint& point);
 /// FNV-1a 64-bit hash of a text, as 16 hex digits.
 std::string hash_text(const std::string& text);
 
-/// What identifies a plume: every config key it depends on, hashed (runs whose scenarios share
-/// this key and whose (seed, trial) match meet bit for bit the same plume).
+/// What identifies a plume: every config key it depends on and its wind field's identity
+/// (wind_identity), hashed (runs whose scenarios share this key and whose (seed, trial) match
+/// meet bit for bit the same plume).
 std::string plume_key(const Scenario& scenario);
 
 /// Runs several agents in one shared environment, a World of one agent per scenario

@@ -128,10 +128,14 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
           {def.axes[a].key, v, false, where + ": axis " + def.axes[a].key, Layer::kAxis});
     }
     point.scenario = build_scenario(settings);
-    point.config_hash = hash_text(scenario_to_toml(point.scenario, ConfigKeys::kOfTheRun));
+    point.config_hash = scenario_hash(point.scenario);
     out.points.push_back(std::move(point));
   }
   return out;
+}
+
+std::string scenario_hash(const Scenario& scenario) {
+  return hash_text(canonical_config(scenario, ConfigKeys::kOfTheRun));
 }
 
 std::string plume_key(const Scenario& scenario) {
@@ -149,7 +153,7 @@ std::string plume_key(const Scenario& scenario) {
   p.wind.model = scenario.wind.model;
   p.wind.velocity = scenario.wind.velocity;
   p.wind.params.at(winds, model) = scenario.wind.params.at(winds, model);
-  return hash_text(scenario_to_toml(p, ConfigKeys::kOfTheRun) +
+  return hash_text(canonical_config(p, ConfigKeys::kOfTheRun) +
                    wind_identity(scenario.wind, wind_region(scenario.arena)));
 }
 

@@ -663,7 +663,11 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario) {
   return out;
 }
 
-std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
+namespace {
+
+// calls f for every key of `keys` (ConfigKeys) in file order
+void for_each_value_of(const Scenario& scenario, ConfigKeys keys,
+                       const std::function<void(const FieldValue&)>& f) {
   // why: the keys of a controller registered outside the library (examples/zigzag, a Python
   // one) are in a run's config only when it is the one that runs, so that registering it
   // changes neither the stored config nor the hash of a run of any other controller (a store
@@ -675,12 +679,19 @@ std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
   for (std::size_t i = builtins; keys == ConfigKeys::kOfTheRun && i < registry.size(); ++i) {
     if (i != chosen) unused_tables.push_back(registry[i].table);
   }
+  for_each_value(scenario, [&](const FieldValue& v) {
+    if (std::find(unused_tables.begin(), unused_tables.end(), v.table) == unused_tables.end()) {
+      f(v);
+    }
+  });
+}
+
+}  // namespace
+
+std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
   std::ostringstream out;
   std::string table;
-  for_each_value(scenario, [&](const FieldValue& f) {
-    if (std::find(unused_tables.begin(), unused_tables.end(), f.table) != unused_tables.end()) {
-      return;
-    }
+  for_each_value_of(scenario, keys, [&](const FieldValue& f) {
     if (f.table != table) {
       out << (table.empty() ? "" : "\n") << "[" << f.table << "]\n";
       table = f.table;
@@ -691,6 +702,15 @@ std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
     out << f.name << " = " << text << "  # " << f.help << "\n";
   });
   return out.str();
+}
+
+std::string canonical_config(const Scenario& scenario, ConfigKeys keys) {
+  std::string out;
+  for_each_value_of(scenario, keys, [&](const FieldValue& f) {
+    out.append(f.table).append(".").append(f.name).append("=").append(format_value(f.value));
+    out += '\n';
+  });
+  return out;
 }
 
 }  // namespace plumetrace

@@ -217,6 +217,13 @@ enum class ConfigKeys {
 /// point stores) registering a controller changes no other controller's config.
 std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys = ConfigKeys::kAll);
 
+/// The scenario's values as canonical text, one `table.key=value` line per key in the order of
+/// the field list: numbers as format_number writes them (they read back to the same double),
+/// choices by name in quotes, no help and no comments. What a run's identity hashes
+/// (scenario_hash, sweep.hpp), so that editing a key's help changes no hash; `keys` as for
+/// scenario_to_toml.
+std::string canonical_config(const Scenario& scenario, ConfigKeys keys = ConfigKeys::kOfTheRun);
+
 /// Where a setting comes from; later layers override earlier ones.
 enum class Layer {
   kFile,         ///< a scenario file

@@ -348,6 +348,16 @@ def test_discrete_actions_other_than_an_index_in_range_are_refused(action, error
 def test_meander_keys_beyond_the_stability_bound_raise_naming_them():
     # issue 22, G1: each key inside its range, together they made the wind, and so the
     # observations, NaN; the environment refuses them as the command does
-    with pytest.raises(pt.ConfigError, match="wind.meander_gain.*unstable"):
-        PlumeEnv(wind__model="meander", wind__meander_gain=10, wind__meander_bandwidth=100,
-                 wind__meander_damping=10)
+    with pytest.raises(pt.ConfigError, match="meander.gain.*unstable"):
+        PlumeEnv(wind__model="meander", meander__gain=10, meander__bandwidth=100,
+                 meander__damping=10)
+
+
+def test_the_meander_keys_old_names_still_work_and_warn_naming_the_new_ones(capfd):
+    # until the next version: wind.meander_gain is meander.gain, said on stderr (issue 24)
+    s = pt.Scenario(wind__model="meander", wind__meander_gain=0.05, wind__meander_nx=9)
+    assert (s["meander.gain"], s["meander.nx"]) == (0.05, 9)
+    assert "meander_gain" not in s.to_toml()
+    err = capfd.readouterr().err
+    assert "wind.meander_gain is deprecated: write meander.gain" in err
+    assert "wind.meander_nx is deprecated: write meander.nx" in err

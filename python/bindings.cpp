@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <span>
@@ -269,7 +270,12 @@ std::vector<double> finite_numbers(const py::handle& value, const std::string& w
     }
     const double v = PyFloat_AsDouble(item.ptr());
     if (v == -1.0 && PyErr_Occurred()) {
+      const bool overflow = PyErr_ExceptionMatches(PyExc_OverflowError) != 0;
       PyErr_Clear();
+      if (!overflow) {
+        throw py::type_error(what + ": " + py::repr(item).cast<std::string>() + " (" +
+                             type_name(item) + ") is not a real number");
+      }
       throw py::value_error(what + ": " + py::repr(item).cast<std::string>() +
                             " is out of a float's range");
     }
@@ -292,6 +298,20 @@ py::object float_array(const py::handle& value, const std::string& what) {
   }
 }
 
+// ValueError naming `what` and the first key of `d` that is not one of `keys`
+void check_keys(const py::dict& d, std::initializer_list<const char*> keys, const std::string& what) {
+  for (const auto& [key, item] : d) {
+    const bool known = std::any_of(keys.begin(), keys.end(),
+                                   [&](const char* k) { return key.equal(py::str(k)); });
+    if (!known) {
+      std::string names;
+      for (const char* k : keys) names += (names.empty() ? "" : ", ") + std::string(k);
+      throw py::value_error(what + ": unknown key " + py::repr(key).cast<std::string>() + " (" +
+                            names + ")");
+    }
+  }
+}
+
 // The snapshot of a controller's state from the dict its snapshot() returns (None: nothing to
 // show); every key optional: points (N x 2), weights (N), path (M x 2), grid {x0, y0, dx, dy,
 // values (ny x nx, rows by y; or flat, with nx and ny)}, estimate ((x, y) or None). Numbers
@@ -305,16 +325,7 @@ pt::Snapshot snapshot_of(const py::handle& value, const std::string& who) {
                          "None, got " + type_name(value));
   }
   const auto d = py::reinterpret_borrow<py::dict>(value);
-  static constexpr std::array<std::string_view, 5> kKeys{"points", "weights", "path", "grid",
-                                                         "estimate"};
-  for (const auto& [key, item] : d) {
-    const bool known = py::isinstance<py::str>(key) &&
-                       std::find(kKeys.begin(), kKeys.end(), key.cast<std::string>()) != kKeys.end();
-    if (!known) {
-      throw py::value_error(what + ": unknown key " + py::repr(key).cast<std::string>() +
-                            " (points, weights, path, grid, estimate)");
-    }
-  }
+  check_keys(d, {"points", "weights", "path", "grid", "estimate"}, what);
   const auto has = [&](const char* key) { return d.contains(key) && !d[key].is_none(); };
   // a list of (x, y) points: any sequence of pairs, or an (N, 2) array
   const auto xy = [&](const char* key) {
@@ -351,17 +362,7 @@ pt::Snapshot snapshot_of(const py::handle& value, const std::string& who) {
                            type_name(d["grid"]));
     }
     const auto g = py::reinterpret_borrow<py::dict>(d["grid"]);
-    static constexpr std::array<std::string_view, 7> kGridKeys{"x0", "y0", "dx", "dy",
-                                                               "nx", "ny", "values"};
-    for (const auto& [key, item] : g) {
-      const bool known =
-          py::isinstance<py::str>(key) &&
-          std::find(kGridKeys.begin(), kGridKeys.end(), key.cast<std::string>()) != kGridKeys.end();
-      if (!known) {
-        throw py::value_error(where + ": unknown key " + py::repr(key).cast<std::string>() +
-                              " (x0, y0, dx, dy, nx, ny, values)");
-      }
-    }
+    check_keys(g, {"x0", "y0", "dx", "dy", "nx", "ny", "values"}, where);
     const auto number = [&](const char* key) {
       if (!g.contains(key)) throw py::value_error(where + ": no " + key);
       return finite_numbers(py::make_tuple(g[key]), where + "." + key).front();

@@ -193,7 +193,9 @@ constexpr std::array<std::pair<std::string_view, unsigned>, 3> kReadNames{{
 // the names of kReadNames, for messages: "binary, concentration, messages"
 std::string read_names() {
   std::string names;
-  for (const auto& [name, flag] : kReadNames) names += (names.empty() ? "" : ", ") + std::string(name);
+  for (const auto& [name, flag] : kReadNames) {
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
   return names;
 }
 
@@ -208,8 +210,8 @@ unsigned reads_of(const py::handle& value, const std::string& who) {
   } else if (py::isinstance<py::iterable>(value) && !py::isinstance<py::bytes>(value)) {
     for (const py::handle item : value) items.push_back(py::reinterpret_borrow<py::object>(item));
   } else {
-    throw py::type_error(what + " must be a name or a tuple of names (" + read_names() +
-                         "), got " + type_name(value));
+    throw py::type_error(what + " must be a name or a tuple of names (" + read_names() + "), got " +
+                         type_name(value));
   }
   unsigned flags = pt::kReadsBinary;
   std::string unknown;
@@ -253,7 +255,7 @@ struct HeldObservation {
   std::vector<pt::Message> messages;
 };
 
-// n finite numbers of a Python sequence (a list, tuple or array); `what` names it in the
+// the finite numbers of a Python sequence (a list, tuple or array); `what` names it in the
 // TypeError or ValueError of anything else
 std::vector<double> finite_numbers(const py::handle& value, const std::string& what) {
   if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
@@ -299,10 +301,11 @@ py::object float_array(const py::handle& value, const std::string& what) {
 }
 
 // ValueError naming `what` and the first key of `d` that is not one of `keys`
-void check_keys(const py::dict& d, std::initializer_list<const char*> keys, const std::string& what) {
+void check_keys(const py::dict& d, std::initializer_list<const char*> keys,
+                const std::string& what) {
   for (const auto& [key, item] : d) {
-    const bool known = std::any_of(keys.begin(), keys.end(),
-                                   [&](const char* k) { return key.equal(py::str(k)); });
+    const bool known =
+        std::any_of(keys.begin(), keys.end(), [&](const char* k) { return key.equal(py::str(k)); });
     if (!known) {
       std::string names;
       for (const char* k : keys) names += (names.empty() ? "" : ", ") + std::string(k);
@@ -321,8 +324,9 @@ pt::Snapshot snapshot_of(const py::handle& value, const std::string& who) {
   if (value.is_none()) return s;
   const std::string what = who + ".snapshot()";
   if (!py::isinstance<py::dict>(value)) {
-    throw py::type_error(what + " must return a dict (points, weights, path, grid, estimate) or "
-                         "None, got " + type_name(value));
+    const std::string got = type_name(value);
+    throw py::type_error(what + " must return a dict (points, weights, path, grid, estimate) " +
+                         "or None, got " + got);
   }
   const auto d = py::reinterpret_borrow<py::dict>(value);
   check_keys(d, {"points", "weights", "path", "grid", "estimate"}, what);
@@ -401,8 +405,8 @@ pt::Snapshot snapshot_of(const py::handle& value, const std::string& who) {
     }
     s.grid = flat(values, where + ".values");
     if (static_cast<long long>(s.grid.size()) != nx * ny) {
-      throw py::value_error(where + ": " + std::to_string(s.grid.size()) + " values for nx * ny = " +
-                            std::to_string(nx * ny));
+      throw py::value_error(where + ": " + std::to_string(s.grid.size()) +
+                            " values for nx * ny = " + std::to_string(nx * ny));
     }
     s.nx = static_cast<int>(nx);
     s.ny = static_cast<int>(ny);
@@ -1627,8 +1631,8 @@ PYBIND11_MODULE(_core, m) {
              return py::iter(py::make_tuple(msg.from, msg.sent, message_tuple(msg.data)));
            })
       .def("__repr__", [](const pt::Message& msg) {
-        return "Message(from_=" + std::to_string(msg.from) + ", sent=" +
-               py::repr(py::float_(msg.sent)).cast<std::string>() +
+        return "Message(from_=" + std::to_string(msg.from) +
+               ", sent=" + py::repr(py::float_(msg.sent)).cast<std::string>() +
                ", data=" + py::repr(message_tuple(msg.data)).cast<std::string>() + ")";
       });
   m.attr("READS") = [] {
@@ -1637,7 +1641,8 @@ PYBIND11_MODULE(_core, m) {
     return py::tuple(names);
   }();
   m.def(
-      "reads_flags", [](const py::object& reads, const std::string& who) { return reads_of(reads, who); },
+      "reads_flags",
+      [](const py::object& reads, const std::string& who) { return reads_of(reads, who); },
       py::arg("reads"), py::arg("who"),
       "the Reads flags of a controller's `reads`; ValueError naming unknown names");
   py::class_<HeldObservation>(m, "Observation")
@@ -1710,9 +1715,8 @@ PYBIND11_MODULE(_core, m) {
           [](const pt::Command& c, const py::handle& data) {
             const std::vector<double> v = finite_numbers(data, "Command.with_message: data");
             if (v.size() != pt::kMessageSize) {
-              throw py::value_error("Command.with_message: data holds " +
-                                    std::to_string(v.size()) + " numbers, not " +
-                                    std::to_string(pt::kMessageSize));
+              throw py::value_error("Command.with_message: data holds " + std::to_string(v.size()) +
+                                    " numbers, not " + std::to_string(pt::kMessageSize));
             }
             std::array<double, pt::kMessageSize> message{};
             std::copy(v.begin(), v.end(), message.begin());

@@ -232,7 +232,8 @@ actions = st.one_of(
 
 
 # what a controller says it reads (Controller.reads)
-READS = [(), ("concentration",), ("messages", "concentration"), "binary", ("concentration", "smell")]
+READS = [(), ("concentration",), ("messages", "concentration"), "binary",
+         ("concentration", "smell")]
 reads_of = st.sampled_from(READS)
 
 

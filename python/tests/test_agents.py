@@ -122,7 +122,8 @@ def test_unknown_reads_are_refused_naming_them():
     pt.register_controller("reads-method", Method)
     with pytest.raises(ValueError, match="unknown 'odour'"):
         pt.run(algorithm="reads-method", trace=False)
-    for bad, kind in ((3, "must be a name or a tuple of names .* got int"), ((1,), r"1 \(int\) is not a name")):
+    for bad, kind in ((3, "must be a name or a tuple of names .* got int"),
+                      ((1,), r"1 \(int\) is not a name")):
         _ReadsSmell.reads = bad
         try:
             with pytest.raises(TypeError, match=kind):

@@ -492,22 +492,10 @@ snapshot_keys = {"points": pairs, "weights": number_lists, "path": pairs, "grid"
 snapshot_dicts = st.fixed_dictionaries({}, optional=snapshot_keys)
 
 
-class Shows:
-    """A controller whose snapshot() returns what it was given."""
-
-    def __init__(self, shown):
-        self.shown = shown
-
-    def step(self, obs, wind):
-        return Command.stop()
-
-    def snapshot(self):
-        return self.shown
-
-
 @bounded(500)
 @given(snapshot_dicts)
 def check_snapshots_convert_or_name_what_is_wrong(shown):
+    from conftest import Shows
     from plumetrace.controllers import snapshot_of
 
     show("snapshot", shown)

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import plumetrace_with_core
+from conftest import Shows, plumetrace_with_core
 
 pt = plumetrace_with_core()
 from plumetrace.controllers import (  # noqa: E402
@@ -234,24 +234,13 @@ def test_a_run_without_a_declaration_has_no_declaration_error():
 
 # -- snapshots -----------------------------------------------------------------------------------
 
-class _Shows:
-    def __init__(self, shown):
-        self.shown = shown
-
-    def step(self, obs, wind):
-        return Command.stop()
-
-    def snapshot(self):
-        return self.shown
-
-
 def test_a_snapshot_dict_comes_back_as_a_run_takes_it():
     values = np.arange(6.0).reshape(2, 3)  # ny = 2 rows of nx = 3 cells
     shown = {"points": [(0.0, 1.0), (2.0, -3.5)], "weights": [0.25, 0.75],
              "path": np.array([[0.0, 0.0], [1.0, 0.5], [2.0, 1.0]]),
              "grid": {"x0": -1.0, "y0": 2.0, "dx": 0.5, "dy": 0.25, "values": values},
              "estimate": (4.0, -0.5)}
-    back = snapshot_of(_Shows(shown))
+    back = snapshot_of(Shows(shown))
     assert np.array_equal(back["points"], np.array(shown["points"]))
     assert np.array_equal(back["weights"], shown["weights"])
     assert np.array_equal(back["path"], shown["path"])
@@ -259,20 +248,20 @@ def test_a_snapshot_dict_comes_back_as_a_run_takes_it():
     assert back["grid"] == {"x0": -1.0, "y0": 2.0, "dx": 0.5, "dy": 0.25, "nx": 3, "ny": 2}
     assert back["estimate"] == (4.0, -0.5)
     # and again: what comes back is a snapshot dict itself
-    again = snapshot_of(_Shows(snapshot_of(_Shows(shown))))
+    again = snapshot_of(Shows(snapshot_of(Shows(shown))))
     assert again["grid"]["values"].tolist() == values.tolist()
     # a flat grid with its counts, and nothing
-    flat = snapshot_of(_Shows({"grid": {"x0": 0, "y0": 0, "dx": 1, "dy": 1, "nx": 3, "ny": 2,
+    flat = snapshot_of(Shows({"grid": {"x0": 0, "y0": 0, "dx": 1, "dy": 1, "nx": 3, "ny": 2,
                                         "values": list(range(6))}}))
     assert flat["grid"]["values"].tolist() == values.tolist() and flat["estimate"] is None
-    for empty in (snapshot_of(_Shows(None)), snapshot_of(_Shows({})),
+    for empty in (snapshot_of(Shows(None)), snapshot_of(Shows({})),
                   snapshot_of(Controller())):
         assert empty["points"].shape == (0, 2) and empty["path"].shape == (0, 2)
         assert empty["grid"] is None and empty["estimate"] is None and empty["weights"].size == 0
 
 
 @pytest.mark.parametrize("shown, error, says", [
-    ([(0, 0)], TypeError, r"_Shows\.snapshot\(\) must return a dict"),
+    ([(0, 0)], TypeError, r"Shows\.snapshot\(\) must return a dict"),
     ({"particles": []}, ValueError, "unknown key 'particles'"),
     ({"points": [(0, 0, 1)]}, ValueError, r"points must be \(x, y\) pairs"),
     ({"points": [(0, math.nan)]}, ValueError, "points: nan is not a finite"),
@@ -293,4 +282,4 @@ def test_a_snapshot_dict_comes_back_as_a_run_takes_it():
 ])
 def test_a_snapshot_that_is_no_snapshot_is_refused_naming_the_key(shown, error, says):
     with pytest.raises(error, match=says):
-        snapshot_of(_Shows(shown))
+        snapshot_of(Shows(shown))

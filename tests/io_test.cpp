@@ -69,7 +69,7 @@ TEST(OutputFiles, CheckingAPathLeavesNothingBehind) {
 
 TEST(OutputFiles, ACsvTraceWritesBothFilesWhole) {
   Trace trace;
-  trace.steps.resize(3);
+  trace.agents.emplace_back().steps.resize(3);
   trace.snapshots.push_back({0.0, {1.0, 2.0}, {0.0, 0.5}, {0.1, 0.1}, {0.01, 0.02}});
   const std::string path = testing::temp_path("trace", ".csv");
   const std::string filaments = path.substr(0, path.size() - 4) + ".filaments.csv";

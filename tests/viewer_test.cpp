@@ -260,9 +260,9 @@ TEST(Trace, JsonTraceReadsBackStepsBitForBitAndFilamentsToHalfAStep) {
   EXPECT_EQ(scenario_to_json(back.scenario), scenario_to_json(run.scenario));
   EXPECT_EQ(result_to_json(back.result, back.info), result_to_json(run.result, run.info));
   EXPECT_EQ(back.version, run.version);
-  ASSERT_EQ(back.trace.steps.size(), run.trace.steps.size());
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    const TraceStep &a = run.trace.steps[i], &b = back.trace.steps[i];
+  ASSERT_EQ(back.trace.agents[0].steps.size(), run.trace.agents[0].steps.size());
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    const TraceStep &a = run.trace.agents[0].steps[i], &b = back.trace.agents[0].steps[i];
     ASSERT_EQ(std::memcmp(&a.pose, &b.pose, sizeof a.pose), 0) << i;
     ASSERT_EQ(a.time, b.time);
     ASSERT_EQ(a.odometer, b.odometer);
@@ -330,7 +330,7 @@ std::string format_1_trace(const RecordedRun& run) {
   doc["plumetrace_trace"] = 1;
   json& st = doc["steps"];
   json states = json::array(), odor = json::array();
-  for (const auto& s : run.trace.steps) states.push_back(s.state), odor.push_back(s.odor);
+  for (const auto& s : run.trace.agents[0].steps) states.push_back(s.state), odor.push_back(s.odor);
   st["state"] = states;
   st["odor"] = odor;
   st.erase("state_names");
@@ -356,23 +356,23 @@ TEST(Trace, Format1TracesStillReadWithTheTrueWindWhereItIsKnown) {
   // laminar: the true wind is the scenario's, everywhere and always
   const RecordedRun run = recorded_run();
   const RecordedRun back = read_trace(format_1_trace(run));
-  ASSERT_EQ(back.trace.steps.size(), run.trace.steps.size());
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    ASSERT_EQ(back.trace.steps[i].state, run.trace.steps[i].state);
-    ASSERT_EQ(back.trace.steps[i].odor, run.trace.steps[i].odor);
-    ASSERT_EQ(back.trace.steps[i].true_wind.x, run.scenario.wind.velocity.x);
-    ASSERT_EQ(back.trace.steps[i].true_wind.y, run.scenario.wind.velocity.y);
+  ASSERT_EQ(back.trace.agents[0].steps.size(), run.trace.agents[0].steps.size());
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    ASSERT_EQ(back.trace.agents[0].steps[i].state, run.trace.agents[0].steps[i].state);
+    ASSERT_EQ(back.trace.agents[0].steps[i].odor, run.trace.agents[0].steps[i].odor);
+    ASSERT_EQ(back.trace.agents[0].steps[i].true_wind.x, run.scenario.wind.velocity.x);
+    ASSERT_EQ(back.trace.agents[0].steps[i].true_wind.y, run.scenario.wind.velocity.y);
   }
   EXPECT_EQ(back.trace.snapshots.back().x, run.trace.snapshots.back().x);
   // a meander with no gain blows its mean; one with gain is unknown (NaN), and the page says so
   const RecordedRun calm =
       recorded_file_run("meander-strong.toml", {{"wind.meander_gain", 0.0}}, 0.0);
-  EXPECT_EQ(read_trace(format_1_trace(calm)).trace.steps.back().true_wind.x, 0.9);
+  EXPECT_EQ(read_trace(format_1_trace(calm)).trace.agents[0].steps.back().true_wind.x, 0.9);
   const RecordedRun meander = recorded_file_run("meander-strong.toml", {}, 0.0);
   const RecordedRun unknown = read_trace(format_1_trace(meander));
-  EXPECT_TRUE(std::isnan(unknown.trace.steps.back().true_wind.x));
+  EXPECT_TRUE(std::isnan(unknown.trace.agents[0].steps.back().true_wind.x));
   const json d = page_data_of(viewer_html(unknown, {}));
-  EXPECT_TRUE(d["frames"]["true_u"].back().is_null());
+  EXPECT_TRUE(d["robots"][0]["frames"]["true_wind_x"].back().is_null());
 }
 
 TEST(Trace, ANewerTraceFormatIsRefusedNamingTheFile) {
@@ -380,15 +380,15 @@ TEST(Trace, ANewerTraceFormatIsRefusedNamingTheFile) {
   const std::string path = testing::temp_path("newer", ".json");
   write_trace(path, run.trace, run.scenario, run.result, run.info);
   json doc = json::parse(testing::read_file(path));
-  doc["plumetrace_trace"] = 3;
+  doc["plumetrace_trace"] = 4;
   std::ofstream(path) << doc.dump();
   try {
     read_trace(path);
-    FAIL() << "format 3 was read";
+    FAIL() << "format 4 was read";
   } catch (const ConfigError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find("format 3 is newer"), std::string::npos) << what;
+    EXPECT_NE(what.find("format 4 is newer"), std::string::npos) << what;
   }
 }
 
@@ -447,7 +447,7 @@ TEST(Trace, ALongRunsTraceStaysSmall) {
 TEST(Trace, TheTrueWindAtTheRobotIsRecordedEveryStep) {
   // laminar: the scenario's wind at every step
   const RecordedRun laminar = recorded_run(0.0);
-  for (const auto& s : laminar.trace.steps) {
+  for (const auto& s : laminar.trace.agents[0].steps) {
     ASSERT_EQ(s.true_wind.x, laminar.scenario.wind.velocity.x);
     ASSERT_EQ(s.true_wind.y, laminar.scenario.wind.velocity.y);
   }
@@ -458,9 +458,9 @@ TEST(Trace, TheTrueWindAtTheRobotIsRecordedEveryStep) {
   double lo = INFINITY, hi = -INFINITY, worst = 0.0;
   const WindGrid& g = run.trace.wind_grid;
   std::size_t snap = 0;
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    const TraceStep& s = run.trace.steps[i];
-    ASSERT_EQ(back.trace.steps[i].true_wind.x, s.true_wind.x);
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    const TraceStep& s = run.trace.agents[0].steps[i];
+    ASSERT_EQ(back.trace.agents[0].steps[i].true_wind.x, s.true_wind.x);
     const double angle = std::atan2(s.true_wind.y, s.true_wind.x);
     lo = std::min(lo, angle), hi = std::max(hi, angle);
     if (snap < run.trace.snapshots.size() && run.trace.snapshots[snap].time == s.time) {
@@ -533,7 +533,7 @@ TEST(Trace, JsonTraceWrittenPieceByPieceIsTheDumpOfTheWholeDocument) {
   const auto doc = nlohmann::json::parse(text);
   EXPECT_EQ(doc.dump() + "\n", text);
   EXPECT_EQ(doc["snapshots"].size(), run.trace.snapshots.size());
-  EXPECT_EQ(doc["steps"]["x"].size(), run.trace.steps.size());
+  EXPECT_EQ(doc["steps"]["x"].size(), run.trace.agents[0].steps.size());
 }
 
 TEST(Trace, ReadingABadTraceNamesTheFile) {
@@ -560,7 +560,7 @@ TEST(Trace, ReadingABadTraceNamesTheFile) {
   EXPECT_NE(message(other).find("not a plumetrace trace"), std::string::npos);
 
   RecordedRun run = recorded_run(0.0);
-  run.trace.steps.clear();
+  run.trace.agents[0].steps.clear();
   const std::string empty = testing::temp_path("empty", ".json");
   write_trace(empty, run.trace, run.scenario, run.result, run.info);
   EXPECT_NE(message(empty).find("no steps"), std::string::npos) << message(empty);
@@ -608,11 +608,16 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
   EXPECT_EQ(html.find("/*PLUMETRACE_DATA*/"), std::string::npos);
 
   const json d = page_data(html);
-  EXPECT_EQ(d["steps"], run.trace.steps.size());
+  EXPECT_EQ(d["steps"], run.trace.agents[0].steps.size());
   EXPECT_EQ(d["result"]["outcome"], outcome_name(run.result.outcome));
-  EXPECT_EQ(d["frames"]["time"].size(), run.trace.steps.size());  // a short run keeps every step
-  EXPECT_DOUBLE_EQ(d["frames"]["x"].back().get<double>(),
-                   std::round(run.trace.steps.back().pose.x * 1e5) / 1e5);
+  ASSERT_EQ(d["robots"].size(), 1u);
+  const json& robot = d["robots"][0];
+  EXPECT_EQ(robot["color"], d["style"]["robot"]);  // a robot alone keeps its colour
+  EXPECT_EQ(robot["result"], d["result"]);
+  // a short run keeps every step
+  EXPECT_EQ(robot["frames"]["time"].size(), run.trace.agents[0].steps.size());
+  EXPECT_DOUBLE_EQ(robot["frames"]["x"].back().get<double>(),
+                   std::round(run.trace.agents[0].steps.back().pose.x * 1e5) / 1e5);
   EXPECT_EQ(d["states"], (json{"upwind", "crosswind"}));
 
   // snapshots: thinned to 10, positions within half a quantum (<= 0.5 mm) of the trace's
@@ -649,12 +654,15 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
 
   // every wind sample, rotated into the world frame, with the true wind where it was taken
   std::size_t samples = 0;
-  for (const auto& s : run.trace.steps) samples += s.wind_samples > 0;
-  ASSERT_EQ(d["wind"]["u"].size(), samples);
-  EXPECT_EQ(d["wind"]["true_u"][0], run.scenario.wind.velocity.x);
-  // and the true wind at the robot in every frame
-  ASSERT_EQ(d["frames"]["true_u"].size(), d["frames"]["time"].size());
-  EXPECT_EQ(d["frames"]["true_u"].back(), run.scenario.wind.velocity.x);
+  for (const auto& s : run.trace.agents[0].steps) samples += s.wind_samples > 0;
+  ASSERT_EQ(robot["wind"]["u"].size(), samples);
+  EXPECT_EQ(robot["wind"]["true_u"][0], run.scenario.wind.velocity.x);
+  // and the true wind at the robot in every frame: the trace's step columns, but for the samples
+  for (const TraceField& f : trace_fields()) {
+    EXPECT_EQ(robot["frames"].contains(std::string(f.name)), !f.sampled) << f.name;
+  }
+  ASSERT_EQ(robot["frames"]["true_wind_x"].size(), robot["frames"]["time"].size());
+  EXPECT_EQ(robot["frames"]["true_wind_x"].back(), run.scenario.wind.velocity.x);
 
   // the report's colours, by state name and outcome
   EXPECT_EQ(d["style"]["states"], (json{"#1f77b4", "#ff7f0e"}));
@@ -677,12 +685,12 @@ TEST(Viewer, DetectionRegionIsWhereTheRobotPerceivedOdor) {
   // sensor read (the pose before the step's move) says what the robot perceived, bar readings
   // within 1e-6 of the threshold
   RecordedRun run = recorded_run(0.032, true);
-  ASSERT_EQ(run.trace.snapshots.size(), run.trace.steps.size());
+  ASSERT_EQ(run.trace.snapshots.size(), run.trace.agents[0].steps.size());
   long odor = 0, agree = 0, compared = 0;
-  for (std::size_t i = 1; i < run.trace.steps.size(); ++i) {
-    const TraceStep& s = run.trace.steps[i];
+  for (std::size_t i = 1; i < run.trace.agents[0].steps.size(); ++i) {
+    const TraceStep& s = run.trace.agents[0].steps[i];
     if (std::abs(s.concentration / run.scenario.odor.threshold - 1.0) < 1e-6) continue;
-    const Pose& at = run.trace.steps[i - 1].pose;
+    const Pose& at = run.trace.agents[0].steps[i - 1].pose;
     const MapGrid point{{at.x}, {at.y}, run.scenario.odor.height};
     const bool perceivable = detection_mask(run.scenario, run.trace.snapshots[i], point)[0] == 1;
     ++compared;
@@ -708,7 +716,7 @@ TEST(Viewer, EveryKernelsPeakFallsAsTheWidthCubed) {
 TEST(Viewer, DataCannotEndTheScriptElement) {
   RecordedRun run = recorded_run(0.0);
   run.info.algorithm = "</script><b>";
-  for (auto& s : run.trace.steps) s.state = "<!--<script>";
+  for (auto& s : run.trace.agents[0].steps) s.state = "<!--<script>";
   const std::string html = viewer_html(run, {});
   const json d = page_data(html);
   EXPECT_EQ(d["result"]["algorithm"], "</script><b>");
@@ -729,13 +737,13 @@ TEST(Viewer, FigureDrawsEveryLayer) {
   };
   // one polyline per stretch of one state
   std::size_t stretches = 0;
-  for (std::size_t i = 1; i < run.trace.steps.size(); ++i) {
-    stretches += i == 1 || run.trace.steps[i].state != run.trace.steps[i - 1].state;
+  for (std::size_t i = 1; i < run.trace.agents[0].steps.size(); ++i) {
+    stretches += i == 1 || run.trace.agents[0].steps[i].state != run.trace.agents[0].steps[i - 1].state;
   }
   EXPECT_EQ(count("<polyline"), stretches);
   // the filaments of the last snapshot, the wind samples, and the robot
   std::size_t samples = 0;
-  for (const auto& s : run.trace.steps) samples += s.wind_samples > 0;
+  for (const auto& s : run.trace.agents[0].steps) samples += s.wind_samples > 0;
   EXPECT_EQ(count("marker-end=\"url(#arrow)\"/>") - 1, samples);  // one more in the legend
   const auto plume =
       svg.substr(svg.find("<g id=\"plume\""),
@@ -816,8 +824,8 @@ TEST(Viewer, FigureHasAxesAScaleBarAndClipsTheAirToTheArena) {
 TEST(Viewer, FigureLegendFitsTheFiguresWidthInRows) {
   // a controller of many states with long names
   RecordedRun run = recorded_run(1.0);
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    run.trace.steps[i].state = "a rather long state name " + std::to_string(i / 150);
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    run.trace.agents[0].steps[i].state = "a rather long state name " + std::to_string(i / 150);
   }
   const std::string svg = figure_svg(run, {});
   const double width = svg_number(svg, "width"), height = svg_number(svg, "height");

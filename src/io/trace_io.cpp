@@ -446,12 +446,18 @@ std::vector<TraceStep> read_steps(const json& st, int format, const std::string&
   return steps;
 }
 
-// a run's result (RunResult::fields), its seed and trial those of `info`
-RunResult read_result(const json& r, const std::string& where, const RunInfo& info) {
+// a run's result (RunResult::fields), its seed and trial those of `info`; in a trace of format
+// 1 or 2 a field that may be NaN may be missing (NaN): it was added later
+RunResult read_result(const json& r, int format, const std::string& where, const RunInfo& info) {
   RunResult result;
   RunResult::fields(result, [&](const ResultField& f, auto&& value) {
     using T = std::remove_cvref_t<decltype(value)>;
     if constexpr (!kDerivedField<decltype(value)>) {
+      // why: traces of 0.4.0 before teams have no t_first_odor, d_first_odor, declaration_error
+      if (format < 3 && f.nullable && !r.contains(std::string(f.name))) {
+        if constexpr (std::is_floating_point_v<T>) value = NAN;
+        return;
+      }
       const json& v = r.at(std::string(f.name));
       if constexpr (std::is_same_v<T, Outcome>) {
         value = parse_outcome(v.template get<std::string>());
@@ -663,7 +669,7 @@ RecordedRun read_trace(const std::string& path) {
                                 const std::string& name) {
       AgentTrace a;
       a.index = index;
-      a.result = read_result(result, where + name, run.info);
+      a.result = read_result(result, format, where + name, run.info);
       if (result.contains("agent") &&
           trace_integer<int>(result.at("agent"), where + name + "result.agent", 0,
                              kMaxTeam - 1) != index) {

@@ -135,7 +135,7 @@ py::dict trace_columns(const pt::Trace& trace) {
   std::vector<std::uint8_t> odor;
   std::vector<std::int32_t> wind_samples;
   py::list state;
-  for (const pt::TraceStep& s : trace.steps) {
+  for (const pt::TraceStep& s : trace.agents.front().steps) {
     t.push_back(s.time);
     x.push_back(s.pose.x);
     y.push_back(s.pose.y);

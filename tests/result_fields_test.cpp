@@ -123,7 +123,7 @@ TEST(ResultFields, TheResultJsonHasTheFieldsAndTheRunsIdentity) {
 TEST(ResultFields, ATraceReadsBackEveryField) {
   const RunResult result = distinct_result();
   Trace trace;
-  trace.steps.push_back({});
+  trace.agents.emplace_back().steps.resize(1);
   const std::string path = testing::temp_path("trace", ".json");
   write_trace(path, trace, Scenario{}, result, {"casting", result.seed, result.trial});
   const RecordedRun back = read_trace(path);

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
+#include <type_traits>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
@@ -24,6 +27,8 @@
 #include "plumetrace/sim/trace.hpp"
 #include "plumetrace/sim/world.hpp"
 #include "support/command.hpp"
+#include "support/rows.hpp"
+#include "support/snapshot_controller.hpp"
 #include "support/temp_path.hpp"
 #include "view/view_data.hpp"
 
@@ -65,6 +70,28 @@ RecordedRun recorded_file_run(const std::string& file, const std::vector<Setting
   TraceRecorder recorder(run.trace, snapshot_interval, s.sim.dt);
   run.result = run_once(s, seed, 0, std::ref(recorder));
   return run;
+}
+
+// a team of three on the default scenario (released at x = `start_x`, y = 0, -0.3 and 0.3):
+// casting robots, or robots whose controllers show their state and declare the source
+RecordedRun recorded_team(const ControllerFactory& factory = {}, double start_x = 6.0) {
+  Scenario s;
+  s.team.count = 3;
+  s.robot.start.x = start_x;
+  s.supervisor.timeout = 60.0;
+  RecordedRun run;
+  run.scenario = s;
+  run.info = {factory ? "python" : "casting", 7, 2};
+  run.version = std::string(version());
+  TraceRecorder recorder(run.trace, 1.0, s.sim.dt);
+  run.result = run_team(s, 7, 2, std::ref(recorder), factory).front();
+  return run;
+}
+
+// robots that show a belief 14.3 m ahead (upwind: near the source) and declare it after 150,
+// 190 and 230 steps
+RecordedRun recorded_believers() {
+  return recorded_team(testing::snapshot_controllers(150, false, 14.3), 15.5);
 }
 
 // the JSON data a viewer page carries
@@ -260,9 +287,9 @@ TEST(Trace, JsonTraceReadsBackStepsBitForBitAndFilamentsToHalfAStep) {
   EXPECT_EQ(scenario_to_json(back.scenario), scenario_to_json(run.scenario));
   EXPECT_EQ(result_to_json(back.result, back.info), result_to_json(run.result, run.info));
   EXPECT_EQ(back.version, run.version);
-  ASSERT_EQ(back.trace.steps.size(), run.trace.steps.size());
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    const TraceStep &a = run.trace.steps[i], &b = back.trace.steps[i];
+  ASSERT_EQ(back.trace.agents[0].steps.size(), run.trace.agents[0].steps.size());
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    const TraceStep &a = run.trace.agents[0].steps[i], &b = back.trace.agents[0].steps[i];
     ASSERT_EQ(std::memcmp(&a.pose, &b.pose, sizeof a.pose), 0) << i;
     ASSERT_EQ(a.time, b.time);
     ASSERT_EQ(a.odometer, b.odometer);
@@ -330,7 +357,7 @@ std::string format_1_trace(const RecordedRun& run) {
   doc["plumetrace_trace"] = 1;
   json& st = doc["steps"];
   json states = json::array(), odor = json::array();
-  for (const auto& s : run.trace.steps) states.push_back(s.state), odor.push_back(s.odor);
+  for (const auto& s : run.trace.agents[0].steps) states.push_back(s.state), odor.push_back(s.odor);
   st["state"] = states;
   st["odor"] = odor;
   st.erase("state_names");
@@ -356,22 +383,188 @@ TEST(Trace, Format1TracesStillReadWithTheTrueWindWhereItIsKnown) {
   // laminar: the true wind is the scenario's, everywhere and always
   const RecordedRun run = recorded_run();
   const RecordedRun back = read_trace(format_1_trace(run));
-  ASSERT_EQ(back.trace.steps.size(), run.trace.steps.size());
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    ASSERT_EQ(back.trace.steps[i].state, run.trace.steps[i].state);
-    ASSERT_EQ(back.trace.steps[i].odor, run.trace.steps[i].odor);
-    ASSERT_EQ(back.trace.steps[i].true_wind.x, run.scenario.wind.velocity.x);
-    ASSERT_EQ(back.trace.steps[i].true_wind.y, run.scenario.wind.velocity.y);
+  ASSERT_EQ(back.trace.agents[0].steps.size(), run.trace.agents[0].steps.size());
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    ASSERT_EQ(back.trace.agents[0].steps[i].state, run.trace.agents[0].steps[i].state);
+    ASSERT_EQ(back.trace.agents[0].steps[i].odor, run.trace.agents[0].steps[i].odor);
+    ASSERT_EQ(back.trace.agents[0].steps[i].true_wind.x, run.scenario.wind.velocity.x);
+    ASSERT_EQ(back.trace.agents[0].steps[i].true_wind.y, run.scenario.wind.velocity.y);
   }
   EXPECT_EQ(back.trace.snapshots.back().x, run.trace.snapshots.back().x);
   // a meander with no gain blows its mean; one with gain is unknown (NaN), and the page says so
   const RecordedRun calm = recorded_file_run("meander-strong.toml", {{"meander.gain", 0.0}}, 0.0);
-  EXPECT_EQ(read_trace(format_1_trace(calm)).trace.steps.back().true_wind.x, 0.9);
+  EXPECT_EQ(read_trace(format_1_trace(calm)).trace.agents[0].steps.back().true_wind.x, 0.9);
   const RecordedRun meander = recorded_file_run("meander-strong.toml", {}, 0.0);
   const RecordedRun unknown = read_trace(format_1_trace(meander));
-  EXPECT_TRUE(std::isnan(unknown.trace.steps.back().true_wind.x));
+  EXPECT_TRUE(std::isnan(unknown.trace.agents[0].steps.back().true_wind.x));
   const json d = page_data_of(viewer_html(unknown, {}));
-  EXPECT_TRUE(d["frames"]["true_u"].back().is_null());
+  EXPECT_TRUE(d["robots"][0]["frames"]["true_wind_x"].back().is_null());
+}
+
+// every column of a step (TraceStep::fields) as text holding a double's bits; a wind sample's
+// columns only where one was taken
+std::vector<std::string> step_bits(const TraceStep& s) {
+  std::vector<std::string> out;
+  TraceStep::fields(s, [&](const TraceField& f, const auto& value) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    if constexpr (std::is_same_v<T, std::string>) {
+      out.push_back(value);
+    } else if constexpr (std::is_floating_point_v<T>) {
+      out.push_back(f.sampled && s.wind_samples <= 0
+                        ? "-"
+                        : std::to_string(std::bit_cast<std::uint64_t>(value)));
+    } else {
+      out.push_back(std::to_string(value));
+    }
+  });
+  return out;
+}
+
+TEST(Trace, ATeamsTraceReadsBackEveryRobotBitForBit) {
+  const RecordedRun run = recorded_team();
+  ASSERT_EQ(run.trace.agents.size(), 3u);
+  const std::string path = testing::temp_path("team", ".json");
+  write_trace(path, run.trace, run.scenario, run.result, run.info);
+  const RecordedRun back = read_trace(path);
+  EXPECT_EQ(result_to_json(back.result, back.info), result_to_json(run.result, run.info));
+  ASSERT_EQ(back.trace.agents.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const AgentTrace &a = run.trace.agents[k], &b = back.trace.agents[k];
+    EXPECT_EQ(b.index, static_cast<int>(k));
+    EXPECT_EQ(b.result.agent, static_cast<int>(k));
+    EXPECT_EQ(testing::field_bits(b.result), testing::field_bits(a.result)) << k;
+    EXPECT_EQ(std::memcmp(&a.start, &b.start, sizeof a.start), 0) << k;
+    EXPECT_TRUE(std::isnan(b.declared.x) && std::isnan(b.declared.y)) << k;
+    ASSERT_EQ(b.steps.size(), a.steps.size()) << k;
+    ASSERT_GT(a.steps.size(), 100u);
+    for (std::size_t i = 0; i < a.steps.size(); ++i) {
+      ASSERT_EQ(step_bits(b.steps[i]), step_bits(a.steps[i])) << "robot " << k << " step " << i;
+    }
+  }
+  // the robots' paths differ: each has its own table
+  EXPECT_NE(step_bits(run.trace.agents[1].steps.back()), step_bits(run.trace.agents[2].steps.back()));
+  // robot 0's table at the top, as a robot alone's; the others in "teammates", with their index
+  const json doc = json::parse(testing::read_file(path));
+  EXPECT_EQ(doc["plumetrace_trace"], 3);
+  EXPECT_EQ(doc["result"]["agent"], 0);
+  EXPECT_EQ(doc["steps"]["x"].size(), run.trace.agents[0].steps.size());
+  ASSERT_EQ(doc["teammates"].size(), 2u);
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_EQ(doc["teammates"][k - 1]["agent"], k);
+    EXPECT_EQ(doc["teammates"][k - 1]["result"]["agent"], k);
+    EXPECT_EQ(doc["teammates"][k - 1]["steps"]["time"].size(), run.trace.agents[k].steps.size());
+  }
+}
+
+TEST(Trace, ControllerSnapshotsAndDeclarationsReadBackExactly) {
+  const RecordedRun run = recorded_believers();
+  ASSERT_GT(run.trace.controller_snapshots.size(), 3u * 5u);
+  const RecordedRun back = written_and_read(run, "believers");
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(back.trace.agents[k].declared.x, run.trace.agents[k].declared.x) << k;
+    EXPECT_EQ(back.trace.agents[k].declared.y, run.trace.agents[k].declared.y) << k;
+    EXPECT_TRUE(std::isfinite(run.trace.agents[k].declared.x)) << k;
+  }
+  ASSERT_EQ(back.trace.controller_snapshots.size(), run.trace.controller_snapshots.size());
+  for (std::size_t i = 0; i < run.trace.controller_snapshots.size(); ++i) {
+    const ControllerSnapshot &a = run.trace.controller_snapshots[i],
+                             &b = back.trace.controller_snapshots[i];
+    ASSERT_EQ(b.time, a.time) << i;
+    ASSERT_EQ(b.agent, a.agent) << i;
+    ASSERT_EQ(std::memcmp(&a.start, &b.start, sizeof a.start), 0) << i;
+    const Snapshot &p = a.snapshot, &q = b.snapshot;
+    ASSERT_EQ(q.points.size(), p.points.size()) << i;
+    for (std::size_t j = 0; j < p.points.size(); ++j) {
+      ASSERT_EQ(q.points[j].x, p.points[j].x);
+      ASSERT_EQ(q.points[j].y, p.points[j].y);
+    }
+    ASSERT_EQ(q.weights, p.weights) << i;
+    ASSERT_EQ(q.path.size(), p.path.size()) << i;
+    for (std::size_t j = 0; j < p.path.size(); ++j) {
+      ASSERT_EQ(q.path[j].x, p.path[j].x);
+      ASSERT_EQ(q.path[j].y, p.path[j].y);
+    }
+    ASSERT_EQ(q.grid, p.grid) << i;
+    ASSERT_EQ(std::make_tuple(q.x0, q.y0, q.dx, q.dy, q.nx, q.ny),
+              std::make_tuple(p.x0, p.y0, p.dx, p.dy, p.nx, p.ny));
+    ASSERT_EQ(q.has_estimate, p.has_estimate);
+    ASSERT_EQ(q.estimate.x, p.estimate.x);
+    ASSERT_EQ(q.estimate.y, p.estimate.y);
+  }
+}
+
+TEST(Trace, Format2TracesReadAsOneRobot) {
+  // a trace plumetrace wrote before teams (the fuzz corpus keeps one)
+  const RecordedRun old =
+      read_trace(std::string(PLUMETRACE_SOURCE_DIR) + "/tests/fuzz/corpus/trace/format2.json");
+  ASSERT_EQ(old.trace.agents.size(), 1u);
+  const AgentTrace& robot = old.trace.agents[0];
+  EXPECT_EQ(robot.index, 0);
+  ASSERT_FALSE(robot.steps.empty());
+  // its start is its first row's pose, at release
+  EXPECT_EQ(std::memcmp(&robot.start, &robot.steps.front().pose, sizeof robot.start), 0);
+  EXPECT_TRUE(std::isnan(robot.declared.x));
+  EXPECT_EQ(testing::field_bits(robot.result), testing::field_bits(old.result));
+  EXPECT_TRUE(old.trace.controller_snapshots.empty());
+  EXPECT_EQ(page_data_of(viewer_html(old, {}))["robots"].size(), 1u);
+
+  // a robot alone's trace of format 3 holds format 2's keys with their values: read as format 2
+  // (the new keys dropped), it is the same run
+  const RecordedRun run = recorded_run();
+  const std::string path = testing::temp_path("alone", ".json");
+  write_trace(path, run.trace, run.scenario, run.result, run.info);
+  json doc = json::parse(testing::read_file(path));
+  EXPECT_EQ(doc["teammates"], json::array());
+  EXPECT_EQ(doc["controller_snapshots"], json::array());
+  EXPECT_TRUE(doc["declared"].is_null());
+  doc["plumetrace_trace"] = 2;
+  for (const char* key : {"teammates", "controller_snapshots", "declared", "start"}) doc.erase(key);
+  doc["result"].erase("agent");
+  const std::string as_2 = testing::temp_path("as_format_2", ".json");
+  std::ofstream(as_2) << doc.dump();
+  const RecordedRun two = read_trace(as_2);
+  EXPECT_EQ(result_to_json(two.result, two.info), result_to_json(run.result, run.info));
+  ASSERT_EQ(two.trace.agents[0].steps.size(), run.trace.agents[0].steps.size());
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    ASSERT_EQ(step_bits(two.trace.agents[0].steps[i]), step_bits(run.trace.agents[0].steps[i]));
+  }
+  EXPECT_EQ(viewer_html(two, {}), viewer_html(read_trace(path), {}));
+}
+
+TEST(Trace, DamagedTeamsAndSnapshotsAreRefusedNamingWhere) {
+  const RecordedRun run = recorded_believers();
+  const std::string path = testing::temp_path("damaged_team", ".json");
+  write_trace(path, run.trace, run.scenario, run.result, run.info);
+  const json good = json::parse(testing::read_file(path));
+  const auto message = [&](const std::function<void(json&)>& damage) -> std::string {
+    json doc = good;
+    damage(doc);
+    std::ofstream(path) << doc.dump();
+    try {
+      read_trace(path);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(message([](json&) {}), "no error");
+  const auto has = [](const std::string& what, const std::string& part) {
+    return what.find(part) != std::string::npos;
+  };
+  std::string what = message([](json& d) { d["teammates"][1]["steps"]["x"].erase(0); });
+  EXPECT_TRUE(has(what, "teammates[1]: column 'x'")) << what;
+  what = message([](json& d) { d["teammates"][0]["agent"] = 0; });
+  EXPECT_TRUE(has(what, "robot 0 is listed twice")) << what;
+  what = message([](json& d) { d["teammates"][0]["result"]["agent"] = 2; });
+  EXPECT_TRUE(has(what, "teammates[0]: result.agent")) << what;
+  what = message([](json& d) { d["controller_snapshots"][2]["agent"] = 7; });
+  EXPECT_TRUE(has(what, "controller_snapshots[2].agent: no robot 7")) << what;
+  what = message([](json& d) { d["controller_snapshots"][0]["grid"]["values"].erase(0); });
+  EXPECT_TRUE(has(what, "controller_snapshots[0].grid: 239 values")) << what;
+  what = message([](json& d) { d["controller_snapshots"][0]["weights"].erase(0); });
+  EXPECT_TRUE(has(what, "149 weights for 150 points")) << what;
+  what = message([](json& d) { d["start"]["heading"] = "north"; });
+  EXPECT_TRUE(has(what, path)) << what;
 }
 
 TEST(Trace, ANewerTraceFormatIsRefusedNamingTheFile) {
@@ -379,15 +572,15 @@ TEST(Trace, ANewerTraceFormatIsRefusedNamingTheFile) {
   const std::string path = testing::temp_path("newer", ".json");
   write_trace(path, run.trace, run.scenario, run.result, run.info);
   json doc = json::parse(testing::read_file(path));
-  doc["plumetrace_trace"] = 3;
+  doc["plumetrace_trace"] = 4;
   std::ofstream(path) << doc.dump();
   try {
     read_trace(path);
-    FAIL() << "format 3 was read";
+    FAIL() << "format 4 was read";
   } catch (const ConfigError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find("format 3 is newer"), std::string::npos) << what;
+    EXPECT_NE(what.find("format 4 is newer"), std::string::npos) << what;
   }
 }
 
@@ -446,7 +639,7 @@ TEST(Trace, ALongRunsTraceStaysSmall) {
 TEST(Trace, TheTrueWindAtTheRobotIsRecordedEveryStep) {
   // laminar: the scenario's wind at every step
   const RecordedRun laminar = recorded_run(0.0);
-  for (const auto& s : laminar.trace.steps) {
+  for (const auto& s : laminar.trace.agents[0].steps) {
     ASSERT_EQ(s.true_wind.x, laminar.scenario.wind.velocity.x);
     ASSERT_EQ(s.true_wind.y, laminar.scenario.wind.velocity.y);
   }
@@ -457,9 +650,9 @@ TEST(Trace, TheTrueWindAtTheRobotIsRecordedEveryStep) {
   double lo = INFINITY, hi = -INFINITY, worst = 0.0;
   const WindGrid& g = run.trace.wind_grid;
   std::size_t snap = 0;
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    const TraceStep& s = run.trace.steps[i];
-    ASSERT_EQ(back.trace.steps[i].true_wind.x, s.true_wind.x);
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    const TraceStep& s = run.trace.agents[0].steps[i];
+    ASSERT_EQ(back.trace.agents[0].steps[i].true_wind.x, s.true_wind.x);
     const double angle = std::atan2(s.true_wind.y, s.true_wind.x);
     lo = std::min(lo, angle), hi = std::max(hi, angle);
     if (snap < run.trace.snapshots.size() && run.trace.snapshots[snap].time == s.time) {
@@ -532,7 +725,7 @@ TEST(Trace, JsonTraceWrittenPieceByPieceIsTheDumpOfTheWholeDocument) {
   const auto doc = nlohmann::json::parse(text);
   EXPECT_EQ(doc.dump() + "\n", text);
   EXPECT_EQ(doc["snapshots"].size(), run.trace.snapshots.size());
-  EXPECT_EQ(doc["steps"]["x"].size(), run.trace.steps.size());
+  EXPECT_EQ(doc["steps"]["x"].size(), run.trace.agents[0].steps.size());
 }
 
 TEST(Trace, ReadingABadTraceNamesTheFile) {
@@ -559,7 +752,7 @@ TEST(Trace, ReadingABadTraceNamesTheFile) {
   EXPECT_NE(message(other).find("not a plumetrace trace"), std::string::npos);
 
   RecordedRun run = recorded_run(0.0);
-  run.trace.steps.clear();
+  run.trace.agents[0].steps.clear();
   const std::string empty = testing::temp_path("empty", ".json");
   write_trace(empty, run.trace, run.scenario, run.result, run.info);
   EXPECT_NE(message(empty).find("no steps"), std::string::npos) << message(empty);
@@ -607,11 +800,16 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
   EXPECT_EQ(html.find("/*PLUMETRACE_DATA*/"), std::string::npos);
 
   const json d = page_data(html);
-  EXPECT_EQ(d["steps"], run.trace.steps.size());
+  EXPECT_EQ(d["steps"], run.trace.agents[0].steps.size());
   EXPECT_EQ(d["result"]["outcome"], outcome_name(run.result.outcome));
-  EXPECT_EQ(d["frames"]["time"].size(), run.trace.steps.size());  // a short run keeps every step
-  EXPECT_DOUBLE_EQ(d["frames"]["x"].back().get<double>(),
-                   std::round(run.trace.steps.back().pose.x * 1e5) / 1e5);
+  ASSERT_EQ(d["robots"].size(), 1u);
+  const json& robot = d["robots"][0];
+  EXPECT_EQ(robot["color"], d["style"]["robot"]);  // a robot alone keeps its colour
+  EXPECT_EQ(robot["result"], d["result"]);
+  // a short run keeps every step
+  EXPECT_EQ(robot["frames"]["time"].size(), run.trace.agents[0].steps.size());
+  EXPECT_DOUBLE_EQ(robot["frames"]["x"].back().get<double>(),
+                   std::round(run.trace.agents[0].steps.back().pose.x * 1e5) / 1e5);
   EXPECT_EQ(d["states"], (json{"upwind", "crosswind"}));
 
   // snapshots: thinned to 10, positions within half a quantum (<= 0.5 mm) of the trace's
@@ -648,12 +846,15 @@ TEST(Viewer, PageIsSelfContainedAndCarriesTheRun) {
 
   // every wind sample, rotated into the world frame, with the true wind where it was taken
   std::size_t samples = 0;
-  for (const auto& s : run.trace.steps) samples += s.wind_samples > 0;
-  ASSERT_EQ(d["wind"]["u"].size(), samples);
-  EXPECT_EQ(d["wind"]["true_u"][0], run.scenario.wind.velocity.x);
-  // and the true wind at the robot in every frame
-  ASSERT_EQ(d["frames"]["true_u"].size(), d["frames"]["time"].size());
-  EXPECT_EQ(d["frames"]["true_u"].back(), run.scenario.wind.velocity.x);
+  for (const auto& s : run.trace.agents[0].steps) samples += s.wind_samples > 0;
+  ASSERT_EQ(robot["wind"]["u"].size(), samples);
+  EXPECT_EQ(robot["wind"]["true_u"][0], run.scenario.wind.velocity.x);
+  // and the true wind at the robot in every frame: the trace's step columns, but for the samples
+  for (const TraceField& f : trace_fields()) {
+    EXPECT_EQ(robot["frames"].contains(std::string(f.name)), !f.sampled) << f.name;
+  }
+  ASSERT_EQ(robot["frames"]["true_wind_x"].size(), robot["frames"]["time"].size());
+  EXPECT_EQ(robot["frames"]["true_wind_x"].back(), run.scenario.wind.velocity.x);
 
   // the report's colours, by state name and outcome
   EXPECT_EQ(d["style"]["states"], (json{"#1f77b4", "#ff7f0e"}));
@@ -676,12 +877,12 @@ TEST(Viewer, DetectionRegionIsWhereTheRobotPerceivedOdor) {
   // sensor read (the pose before the step's move) says what the robot perceived, bar readings
   // within 1e-6 of the threshold
   RecordedRun run = recorded_run(0.032, true);
-  ASSERT_EQ(run.trace.snapshots.size(), run.trace.steps.size());
+  ASSERT_EQ(run.trace.snapshots.size(), run.trace.agents[0].steps.size());
   long odor = 0, agree = 0, compared = 0;
-  for (std::size_t i = 1; i < run.trace.steps.size(); ++i) {
-    const TraceStep& s = run.trace.steps[i];
+  for (std::size_t i = 1; i < run.trace.agents[0].steps.size(); ++i) {
+    const TraceStep& s = run.trace.agents[0].steps[i];
     if (std::abs(s.concentration / run.scenario.odor.threshold - 1.0) < 1e-6) continue;
-    const Pose& at = run.trace.steps[i - 1].pose;
+    const Pose& at = run.trace.agents[0].steps[i - 1].pose;
     const MapGrid point{{at.x}, {at.y}, run.scenario.odor.height};
     const bool perceivable = detection_mask(run.scenario, run.trace.snapshots[i], point)[0] == 1;
     ++compared;
@@ -707,7 +908,7 @@ TEST(Viewer, EveryKernelsPeakFallsAsTheWidthCubed) {
 TEST(Viewer, DataCannotEndTheScriptElement) {
   RecordedRun run = recorded_run(0.0);
   run.info.algorithm = "</script><b>";
-  for (auto& s : run.trace.steps) s.state = "<!--<script>";
+  for (auto& s : run.trace.agents[0].steps) s.state = "<!--<script>";
   const std::string html = viewer_html(run, {});
   const json d = page_data(html);
   EXPECT_EQ(d["result"]["algorithm"], "</script><b>");
@@ -728,13 +929,13 @@ TEST(Viewer, FigureDrawsEveryLayer) {
   };
   // one polyline per stretch of one state
   std::size_t stretches = 0;
-  for (std::size_t i = 1; i < run.trace.steps.size(); ++i) {
-    stretches += i == 1 || run.trace.steps[i].state != run.trace.steps[i - 1].state;
+  for (std::size_t i = 1; i < run.trace.agents[0].steps.size(); ++i) {
+    stretches += i == 1 || run.trace.agents[0].steps[i].state != run.trace.agents[0].steps[i - 1].state;
   }
   EXPECT_EQ(count("<polyline"), stretches);
   // the filaments of the last snapshot, the wind samples, and the robot
   std::size_t samples = 0;
-  for (const auto& s : run.trace.steps) samples += s.wind_samples > 0;
+  for (const auto& s : run.trace.agents[0].steps) samples += s.wind_samples > 0;
   EXPECT_EQ(count("marker-end=\"url(#arrow)\"/>") - 1, samples);  // one more in the legend
   const auto plume =
       svg.substr(svg.find("<g id=\"plume\""),
@@ -815,8 +1016,8 @@ TEST(Viewer, FigureHasAxesAScaleBarAndClipsTheAirToTheArena) {
 TEST(Viewer, FigureLegendFitsTheFiguresWidthInRows) {
   // a controller of many states with long names
   RecordedRun run = recorded_run(1.0);
-  for (std::size_t i = 0; i < run.trace.steps.size(); ++i) {
-    run.trace.steps[i].state = "a rather long state name " + std::to_string(i / 150);
+  for (std::size_t i = 0; i < run.trace.agents[0].steps.size(); ++i) {
+    run.trace.agents[0].steps[i].state = "a rather long state name " + std::to_string(i / 150);
   }
   const std::string svg = figure_svg(run, {});
   const double width = svg_number(svg, "width"), height = svg_number(svg, "height");
@@ -836,6 +1037,77 @@ TEST(Viewer, FigureLegendFitsTheFiguresWidthInRows) {
   }
   EXPECT_GT(entries, 20u);
   EXPECT_LE(lowest + 8.0, height);
+}
+
+TEST(Viewer, PageCarriesEveryRobotAndTheControllersLayers) {
+  const RecordedRun run = recorded_believers();
+  const std::string html = viewer_html(run, {});
+  // kept for a look in a browser (docs/viewer.md shows one)
+  write_text_file(testing::temp_path("believers", ".html"), html);
+  const json d = page_data(html);
+  const json& robots = d["robots"];
+  ASSERT_EQ(robots.size(), 3u);
+  EXPECT_EQ(robots[0]["color"], d["style"]["robot"]);  // robot 0 keeps a robot alone's colour
+  EXPECT_NE(robots[1]["color"], robots[0]["color"]);
+  EXPECT_NE(robots[2]["color"], robots[1]["color"]);
+  EXPECT_EQ(d["style"]["robots"][2], robots[2]["color"]);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const AgentTrace& a = run.trace.agents[k];
+    const json& r = robots[k];
+    EXPECT_EQ(r["agent"], k);
+    EXPECT_EQ(r["result"]["outcome"], outcome_name(a.result.outcome));
+    EXPECT_EQ(r["steps"], a.steps.size());
+    EXPECT_EQ(r["frames"]["time"].back(), a.steps.back().time);
+    EXPECT_NEAR(r["start"]["y"].get<double>(), a.start.y, 1e-9);
+    ASSERT_TRUE(r["declared"].is_array()) << k;
+    EXPECT_NEAR(r["declared"][0].get<double>(), a.declared.x, 1e-5);
+    EXPECT_NEAR(r["declared"][1].get<double>(), a.declared.y, 1e-5);
+    // its controller's snapshots, every one kept (fewer than max_snapshots)
+    std::size_t mine = 0;
+    for (const auto& c : run.trace.controller_snapshots) mine += c.agent == static_cast<int>(k);
+    ASSERT_EQ(r["layers"].size(), mine);
+    const json& last = r["layers"].back();
+    EXPECT_EQ(last["time"], a.steps.back().time);
+    EXPECT_EQ(last["points"]["x"].size(), 150u);
+    const auto w = last["points"]["w"].get<std::vector<double>>();
+    EXPECT_EQ(*std::max_element(w.begin(), w.end()), 1.0);  // weights over the largest
+    EXPECT_EQ(last["path"]["x"].size(), 3u);
+    const json& grid = last["grid"];
+    EXPECT_EQ(grid["nx"], 24);
+    EXPECT_EQ(grid["ny"], 10);
+    EXPECT_EQ(grid["x0"], 14.3 - 6.0);  // the odometry frame's, drawn rotated about the start
+    const auto cells = unbase64(grid["data"].get<std::string>());
+    ASSERT_EQ(cells.size(), 240u);
+    EXPECT_EQ(*std::max_element(cells.begin(), cells.end()), 254);
+    // the estimate, in the world frame, is where the robot declared the source
+    EXPECT_NEAR(last["estimate"][0].get<double>(), a.declared.x, 1e-4);
+    EXPECT_NEAR(last["estimate"][1].get<double>(), a.declared.y, 1e-4);
+  }
+  // the robots ran for different times, so the page's clock runs to the last one's end
+  EXPECT_LT(robots[0]["frames"]["time"].back(), robots[2]["frames"]["time"].back());
+
+  // a robot alone with a controller that shows nothing: one robot, no layer
+  const json alone = page_data(viewer_html(recorded_run(0.0), {}));
+  ASSERT_EQ(alone["robots"].size(), 1u);
+  EXPECT_TRUE(alone["robots"][0]["layers"].empty());
+  EXPECT_TRUE(alone["robots"][0]["declared"].is_null());
+}
+
+TEST(Viewer, FigureDrawsEveryRobotInItsColour) {
+  const RecordedRun run = recorded_believers();
+  const std::string svg = figure_svg(run, {});
+  for (const char* id : {"robot", "robot-1", "robot-2", "declared", "declared-1", "declared-2"}) {
+    EXPECT_NE(svg.find("id=\"" + std::string(id) + "\""), std::string::npos) << id;
+  }
+  const json d = page_data(viewer_html(run, {}));
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::string color = d["robots"][k]["color"];
+    EXPECT_NE(svg.find("stroke=\"" + color + "\" points="), std::string::npos) << color;
+    EXPECT_NE(svg.find("robot " + std::to_string(k) + ": " +
+                       std::string(outcome_name(run.trace.agents[k].result.outcome))),
+              std::string::npos)
+        << k;
+  }
 }
 
 TEST(Viewer, ViewPathMustBeHtmlOrSvg) {

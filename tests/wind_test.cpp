@@ -405,7 +405,7 @@ std::vector<std::uint64_t> run_bits(const Scenario& s, std::uint64_t trial) {
       out.push_back(static_cast<std::uint64_t>(value));
     }
   });
-  for (const TraceStep& t : trace.steps) {
+  for (const TraceStep& t : trace.agents.front().steps) {
     for (double v : {t.time, t.pose.x, t.pose.y, t.pose.heading, t.odometer, t.concentration,
                      t.wind_body.x, t.wind_body.y, t.wind_body.z}) {
       out.push_back(bits(v));

@@ -294,9 +294,10 @@ bool same_snapshot(const FilamentSnapshot& a, const FilamentSnapshot& b) {
 }
 
 bool same_trace(const Trace& a, const Trace& b) {
-  if (a.steps.size() != b.steps.size() || a.snapshots.size() != b.snapshots.size()) return false;
-  for (std::size_t i = 0; i < a.steps.size(); ++i) {
-    if (!same_step(a.steps[i], b.steps[i])) return false;
+  const auto &as = a.agents.front().steps, &bs = b.agents.front().steps;
+  if (as.size() != bs.size() || a.snapshots.size() != b.snapshots.size()) return false;
+  for (std::size_t i = 0; i < as.size(); ++i) {
+    if (!same_step(as[i], bs[i])) return false;
   }
   for (std::size_t i = 0; i < a.snapshots.size(); ++i) {
     if (!same_snapshot(a.snapshots[i], b.snapshots[i])) return false;
@@ -309,12 +310,13 @@ TEST(Reproducibility, SameSeedAndTrialGiveABitIdenticalTrace) {
     const Scenario s = make_scenario(algorithm, 60.0);
     const Trace a = record(s, kSeed, 3);
     const Trace b = record(s, kSeed, 3);
-    ASSERT_GT(a.steps.size(), 100u);
+    const auto &as = a.agents.front().steps, &bs = b.agents.front().steps;
+    ASSERT_GT(as.size(), 100u);
     ASSERT_GE(a.snapshots.size(), 2u);
-    ASSERT_EQ(a.steps.size(), b.steps.size());
+    ASSERT_EQ(as.size(), bs.size());
     ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
-    for (std::size_t i = 0; i < a.steps.size(); ++i) {
-      ASSERT_TRUE(same_step(a.steps[i], b.steps[i])) << algorithm_name(algorithm) << " step " << i;
+    for (std::size_t i = 0; i < as.size(); ++i) {
+      ASSERT_TRUE(same_step(as[i], bs[i])) << algorithm_name(algorithm) << " step " << i;
     }
     for (std::size_t i = 0; i < a.snapshots.size(); ++i) {
       ASSERT_TRUE(same_snapshot(a.snapshots[i], b.snapshots[i]))

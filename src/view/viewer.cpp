@@ -1,6 +1,7 @@
 #include "plumetrace/view/viewer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -213,6 +214,12 @@ constexpr const char* kDetectionColor = "#000000";
 constexpr const char* kWindColor = "#555555";
 constexpr const char* kTrueWindColor = "#aaaaaa";
 constexpr const char* kWindFieldColor = "#c4c4c4";
+// the robots' colours, robot k taking colour k (mod 10); why: robot 0 keeps the dark grey a
+// robot alone always had; the others are ColorBrewer's Dark2 and two more, dark enough to read
+// on the light floor, none of them the gold of the detection region
+constexpr std::array<const char*, 10> kRobotColors{"#333333", "#1b9e77", "#d95f02", "#7570b3",
+                                                   "#e7298a", "#66a61e", "#a6761d", "#1f78b4",
+                                                   "#b15928", "#6a3d9a"};
 // fill opacity of the detection region
 constexpr double kRegionOpacity = 0.6;
 // wind arrows: metres drawn per m/s
@@ -225,13 +232,23 @@ json rounded_or_null(double v, double unit) {
   return std::isfinite(v) ? json(rounded(v, unit)) : json(nullptr);
 }
 
-// states in order of first appearance
+// states in order of first appearance, robot by robot
 std::vector<std::string> state_names(const Trace& trace) {
   std::vector<std::string> names;
-  for (const auto& s : trace.steps) {
-    if (std::find(names.begin(), names.end(), s.state) == names.end()) names.push_back(s.state);
+  for (const auto& a : trace.agents) {
+    for (const auto& s : a.steps) {
+      if (std::find(names.begin(), names.end(), s.state) == names.end()) names.push_back(s.state);
+    }
   }
   return names;
+}
+
+// robot k's colour
+std::string robot_color(std::size_t k) { return kRobotColors[k % kRobotColors.size()]; }
+
+// robot k's result: robot 0's is the run's
+const RunResult& robot_result(const RecordedRun& run, std::size_t k) {
+  return k == 0 ? run.result : run.trace.agents[k].result;
 }
 
 std::size_t state_index(const std::vector<std::string>& names, const std::string& state) {
@@ -246,9 +263,9 @@ struct WindSample {
 
 // the true wind is the trace's, recorded at the robot at every step (NaN where the trace could
 // not know it: format 1 in a wind that varies)
-std::vector<WindSample> wind_samples(const RecordedRun& run) {
+std::vector<WindSample> wind_samples(const std::vector<TraceStep>& steps) {
   std::vector<WindSample> out;
-  for (const auto& s : run.trace.steps) {
+  for (const auto& s : steps) {
     if (s.wind_samples <= 0) continue;
     const double c = std::cos(s.pose.heading), sn = std::sin(s.pose.heading);
     const Vec2 measured{c * s.wind_body.x - sn * s.wind_body.y,
@@ -390,47 +407,103 @@ json snapshots_json(const RecordedRun& run, const std::vector<std::size_t>& kept
           {"detection", detection_json(run, kept)}};
 }
 
-// everything the page draws, thinned as the options say
-json view_json(const RecordedRun& run, const ViewerOptions& options) {
-  const Scenario& sc = run.scenario;
-  const auto& steps = run.trace.steps;
-  const auto names = state_names(run.trace);
+// what rounding a step column takes in the page, by its unit: 0.1 ms, 0.01 mm, 1e-5 rad and
+// m/s; numbers without a unit as they are
+double column_unit(const TraceField& f) {
+  if (f.unit == "s") return 1e-4;
+  return f.unit.empty() ? 0.0 : 1e-5;
+}
 
-  json outcomes = json::object();
-  for (std::size_t i = 1; i < kOutcomeNames.size(); ++i) {
-    outcomes[std::string(kOutcomeNames[i])] = view::outcome_color(static_cast<Outcome>(i));
+// a robot's animation frames: the step columns (TraceStep::fields) but for the wind samples
+// (drawn from their own list), states as indices into `names`
+json frames_json(const std::vector<TraceStep>& steps, const std::vector<std::string>& names,
+                 std::size_t max_frames) {
+  json frames{{"step", json::array()}};
+  for (const TraceField& f : trace_fields()) {
+    if (!f.sampled) frames[std::string(f.name)] = json::array();
   }
-  const json style{{"plume", kPlumeColor},
-                   {"region", kRegionColor},
-                   {"region_opacity", kRegionOpacity},
-                   {"robot", kRobotColor},
-                   {"detection", kDetectionColor},
-                   {"wind", kWindColor},
-                   {"true_wind", kTrueWindColor},
-                   {"wind_arrow_scale", kWindArrowScale},
-                   {"wind_field", kWindFieldColor},
-                   {"states", view::state_colors(names)},
-                   {"outcomes", outcomes}};
-
-  json frames{{"step", json::array()},   {"time", json::array()},          {"x", json::array()},
-              {"y", json::array()},      {"heading", json::array()},       {"state", json::array()},
-              {"d_t", json::array()},    {"concentration", json::array()}, {"odor", json::array()},
-              {"true_u", json::array()}, {"true_v", json::array()}};
-  for (const std::size_t i : view::frame_steps(steps, options.max_frames)) {
-    const TraceStep& s = steps[i];
+  for (const std::size_t i : view::frame_steps(steps, max_frames)) {
     frames["step"].push_back(i);
-    frames["time"].push_back(rounded(s.time, 1e-4));
-    frames["x"].push_back(rounded(s.pose.x, 1e-5));
-    frames["y"].push_back(rounded(s.pose.y, 1e-5));
-    frames["heading"].push_back(rounded(s.pose.heading, 1e-5));
-    frames["state"].push_back(state_index(names, s.state));
-    frames["d_t"].push_back(rounded(s.odometer, 1e-5));
-    frames["concentration"].push_back(s.concentration);
-    frames["odor"].push_back(s.odor ? 1 : 0);
-    frames["true_u"].push_back(rounded_or_null(s.true_wind.x, 1e-5));
-    frames["true_v"].push_back(rounded_or_null(s.true_wind.y, 1e-5));
+    TraceStep::fields(steps[i], [&](const TraceField& f, const auto& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if (f.sampled) return;
+      json& column = frames[std::string(f.name)];
+      if constexpr (std::is_same_v<T, std::string>) {
+        column.push_back(state_index(names, value));
+      } else if constexpr (std::is_same_v<T, bool>) {
+        column.push_back(value ? 1 : 0);
+      } else if constexpr (std::is_floating_point_v<T>) {
+        const double unit = column_unit(f);
+        column.push_back(unit > 0.0 ? rounded_or_null(value, unit) : json(value));
+      } else {
+        column.push_back(value);
+      }
+    });
   }
+  return frames;
+}
 
+// a controller's grid for the page: its geometry (odometry frame) and its values in 8 bits over
+// their range, 255 where a value is not a number
+json grid_json(const Snapshot& s) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const double v : s.grid) {
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  if (!(lo <= hi)) lo = hi = 0.0;
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(s.grid.size());
+  for (const double v : s.grid) {
+    bytes.push_back(!std::isfinite(v) ? 255
+                    : hi > lo         ? static_cast<std::uint8_t>(std::lround((v - lo) / (hi - lo) * 254.0))
+                                      : 254);
+  }
+  return {{"x0", s.x0}, {"y0", s.y0}, {"dx", s.dx},   {"dy", s.dy},
+          {"nx", s.nx}, {"ny", s.ny}, {"lo", lo},     {"hi", hi},
+          {"data", detail::base64(bytes)}};
+}
+
+// points as columns to 0.1 mm
+json points_json(const std::vector<Vec2>& points) {
+  json x = json::array(), y = json::array();
+  for (const Vec2& p : points) {
+    x.push_back(rounded_or_null(p.x, 1e-4));
+    y.push_back(rounded_or_null(p.y, 1e-4));
+  }
+  return {{"x", std::move(x)}, {"y", std::move(y)}};
+}
+
+// one controller snapshot as the page draws it: points with their weights over the largest
+// (1 when equal), the path, the grid and the estimate, where the controller gave them
+json layer_json(const ControllerSnapshot& c) {
+  const Snapshot& s = c.snapshot;
+  json out{{"time", rounded(c.time, 1e-4)}};
+  if (!s.points.empty()) {
+    out["points"] = points_json(s.points);
+    double top = 0.0;
+    for (const double w : s.weights) {
+      if (std::isfinite(w)) top = std::max(top, w);
+    }
+    json w = json::array();
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      const double v = s.weights.empty() ? 1.0 : top > 0.0 ? s.weights[i] / top : 0.0;
+      w.push_back(std::isfinite(v) ? rounded(std::max(0.0, v), 1e-3) : 0.0);
+    }
+    out["points"]["w"] = std::move(w);
+  }
+  if (!s.path.empty()) out["path"] = points_json(s.path);
+  if (!s.grid.empty()) out["grid"] = grid_json(s);
+  if (s.has_estimate) {
+    out["estimate"] = {rounded_or_null(s.estimate.x, 1e-4), rounded_or_null(s.estimate.y, 1e-4)};
+  }
+  return out;
+}
+
+// one robot as the page draws it
+json robot_json(const RecordedRun& run, std::size_t k, const std::vector<std::string>& names,
+                const ViewerOptions& options) {
+  const AgentTrace& agent = run.trace.agents[k];
+  const auto& steps = agent.steps;
   json path{{"time", json::array()},
             {"x", json::array()},
             {"y", json::array()},
@@ -452,7 +525,7 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
   json wind{{"time", json::array()},  {"x", json::array()}, {"y", json::array()},
             {"u", json::array()},     {"v", json::array()}, {"true_u", json::array()},
             {"true_v", json::array()}};
-  for (const auto& w : wind_samples(run)) {
+  for (const auto& w : wind_samples(steps)) {
     wind["time"].push_back(rounded(w.time, 1e-4));
     wind["x"].push_back(rounded(w.x, 1e-5));
     wind["y"].push_back(rounded(w.y, 1e-5));
@@ -462,9 +535,65 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
     wind["true_v"].push_back(rounded_or_null(w.truth.y, 1e-5));
   }
 
+  // the controller's snapshots, thinned as the filaments are
+  std::vector<const ControllerSnapshot*> mine;
+  for (const auto& c : run.trace.controller_snapshots) {
+    if (c.agent == agent.index) mine.push_back(&c);
+  }
+  json layers = json::array();
+  for (const std::size_t i : view::thin_evenly(mine.size(), options.max_snapshots)) {
+    layers.push_back(layer_json(*mine[i]));
+  }
+
+  const bool declared = std::isfinite(agent.declared.x) && std::isfinite(agent.declared.y);
+  return {{"agent", agent.index},
+          {"color", robot_color(k)},
+          {"result", detail::result_json(robot_result(run, k), run.info)},
+          {"start",
+           {{"x", rounded(agent.start.x, 1e-5)},
+            {"y", rounded(agent.start.y, 1e-5)},
+            {"heading", rounded(agent.start.heading, 1e-5)}}},
+          {"declared", declared ? json::array({rounded(agent.declared.x, 1e-5),
+                                               rounded(agent.declared.y, 1e-5)})
+                                : json(nullptr)},
+          {"steps", steps.size()},
+          {"frames", frames_json(steps, names, options.max_frames)},
+          {"path", path},
+          {"detections", detections},
+          {"wind", wind},
+          {"layers", layers}};
+}
+
+// everything the page draws, thinned as the options say
+json view_json(const RecordedRun& run, const ViewerOptions& options) {
+  const Scenario& sc = run.scenario;
+  const auto names = state_names(run.trace);
+
+  json outcomes = json::object();
+  for (std::size_t i = 1; i < kOutcomeNames.size(); ++i) {
+    outcomes[std::string(kOutcomeNames[i])] = view::outcome_color(static_cast<Outcome>(i));
+  }
+  json robots = json::array(), robot_colors = json::array();
+  for (std::size_t k = 0; k < run.trace.agents.size(); ++k) {
+    robots.push_back(robot_json(run, k, names, options));
+    robot_colors.push_back(robot_color(k));
+  }
+  const json style{{"plume", kPlumeColor},
+                   {"region", kRegionColor},
+                   {"region_opacity", kRegionOpacity},
+                   {"robot", kRobotColor},
+                   {"robots", robot_colors},
+                   {"detection", kDetectionColor},
+                   {"wind", kWindColor},
+                   {"true_wind", kTrueWindColor},
+                   {"wind_arrow_scale", kWindArrowScale},
+                   {"wind_field", kWindFieldColor},
+                   {"states", view::state_colors(names)},
+                   {"outcomes", outcomes}};
+
   const auto kept_snaps = view::thin_evenly(run.trace.snapshots.size(), options.max_snapshots);
   return {
-      {"plumetrace_view", 1},
+      {"plumetrace_view", 2},
       {"version", run.version},
       {"result", detail::result_json(run.result, run.info)},
       {"arena",
@@ -478,13 +607,10 @@ json view_json(const RecordedRun& run, const ViewerOptions& options) {
       {"robot",
        {{"radius", sc.robot.radius}, {"start_x", sc.robot.start.x}, {"start_y", sc.robot.start.y}}},
       {"threshold", sc.odor.threshold},
-      {"steps", steps.size()},
+      {"steps", run.trace.agents.empty() ? 0 : run.trace.agents.front().steps.size()},
       {"states", names},
       {"style", style},
-      {"frames", frames},
-      {"path", path},
-      {"detections", detections},
-      {"wind", wind},
+      {"robots", robots},
       {"snapshots", snapshots_json(run, kept_snaps, shade_range(run, kept_snaps))}};
 }
 
@@ -583,7 +709,10 @@ std::string viewer_html(const RecordedRun& run, const ViewerOptions& options) {
 
 std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   const Scenario& sc = run.scenario;
-  const auto& steps = run.trace.steps;
+  const auto& agents = run.trace.agents;
+  // why: a robot alone's path shows its states; a team's paths each take their robot's colour,
+  // so that one can tell them apart
+  const bool team = agents.size() > 1;
   const auto names = state_names(run.trace);
   const auto colors = view::state_colors(names);
   const double width_m = sc.arena.x_max - sc.arena.x_min;
@@ -603,10 +732,17 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
     std::string swatch, label;
   };
   std::vector<Entry> entries;
-  for (std::size_t i = 0; i < names.size(); ++i) {
+  for (std::size_t i = 0; i < names.size() && !team; ++i) {
     entries.push_back({"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + colors[i] +
                            "\" stroke-width=\"3\"/>",
                        names[i].empty() ? "(no state)" : names[i]});
+  }
+  for (std::size_t k = 0; k < agents.size() && team; ++k) {
+    const RunResult& r = robot_result(run, k);
+    entries.push_back({"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + robot_color(k) +
+                           "\" stroke-width=\"3\"/>",
+                       "robot " + std::to_string(agents[k].index) + ": " +
+                           std::string(outcome_name(r.outcome)) + " at " + num(r.time, 1) + " s"});
   }
   if (!run.trace.snapshots.empty()) {
     entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +
@@ -634,7 +770,14 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
       {"<circle cx=\"7\" cy=\"0\" r=\"4\" fill=\"none\" stroke=\"#333333\"/>", "start"});
   entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kRobotColor +
                          "\" stroke=\"#ffffff\"/>",
-                     "robot at the end"});
+                     team ? "robots at the end" : "robot at the end"});
+  bool any_declared = false;
+  for (const auto& a : agents) any_declared |= std::isfinite(a.declared.x);
+  if (any_declared) {
+    entries.push_back({"<path d=\"M7,-6 L13,0 L7,6 L1,0 z\" fill=\"#ffffff\" stroke=\"#333333\" "
+                       "stroke-width=\"2\"/>",
+                       "declared source"});
+  }
   // why: about 6.5 px a character in a 12 px sans-serif
   const auto entry_width = [](const Entry& e) {
     return 30.0 + 6.5 * static_cast<double>(e.label.size());
@@ -756,50 +899,72 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
       << py(sc.source.center.y) << "\" r=\"" << len(sc.supervisor.success_radius)
       << "\" fill=\"none\" stroke=\"#444444\" stroke-dasharray=\"4 3\"/>\n";
 
-  // odor detections, under the path: a dark edge along it wherever the robot smelled odor
+  // odor detections, under the paths: a dark edge along them wherever a robot smelled odor
   svg << "<g id=\"detections\" fill=\"" << kDetectionColor << "\" fill-opacity=\"0.6\">\n";
-  for (const std::size_t i : view::detection_steps(steps, options.detection_spacing)) {
-    svg << "<circle cx=\"" << px(steps[i].pose.x) << "\" cy=\"" << py(steps[i].pose.y)
-        << "\" r=\"2.5\"/>\n";
+  for (const auto& a : agents) {
+    for (const std::size_t i : view::detection_steps(a.steps, options.detection_spacing)) {
+      svg << "<circle cx=\"" << px(a.steps[i].pose.x) << "\" cy=\"" << py(a.steps[i].pose.y)
+          << "\" r=\"2.5\"/>\n";
+    }
   }
   svg << "</g>\n";
 
-  // trajectory, one polyline per stretch of one state
-  const auto vertices = view::path_steps(steps, options.path_tolerance);
+  // trajectories, one polyline per stretch of one state
   svg << "<g id=\"path\" fill=\"none\" stroke-width=\"2\" stroke-linejoin=\"round\">\n";
-  for (std::size_t j = 1; j < vertices.size();) {
-    const std::string& state = steps[vertices[j]].state;
-    svg << "<polyline stroke=\"" << colors[state_index(names, state)] << "\" points=\""
-        << px(steps[vertices[j - 1]].pose.x) << "," << py(steps[vertices[j - 1]].pose.y);
-    for (; j < vertices.size() && steps[vertices[j]].state == state; ++j) {
-      svg << " " << px(steps[vertices[j]].pose.x) << "," << py(steps[vertices[j]].pose.y);
+  for (std::size_t k = 0; k < agents.size(); ++k) {
+    const auto& steps = agents[k].steps;
+    const auto vertices = view::path_steps(steps, options.path_tolerance);
+    for (std::size_t j = 1; j < vertices.size();) {
+      const std::string& state = steps[vertices[j]].state;
+      svg << "<polyline stroke=\""
+          << (team ? robot_color(k) : colors[state_index(names, state)]) << "\" points=\""
+          << px(steps[vertices[j - 1]].pose.x) << "," << py(steps[vertices[j - 1]].pose.y);
+      for (; j < vertices.size() && steps[vertices[j]].state == state; ++j) {
+        svg << " " << px(steps[vertices[j]].pose.x) << "," << py(steps[vertices[j]].pose.y);
+      }
+      svg << "\"/>\n";
     }
-    svg << "\"/>\n";
   }
   svg << "</g>\n";
 
   svg << "<g id=\"wind\" stroke=\"" << kWindColor << "\" stroke-width=\"1\">\n";
-  for (const auto& w : wind_samples(run)) {
-    svg << "<line x1=\"" << px(w.x) << "\" y1=\"" << py(w.y) << "\" x2=\""
-        << px(w.x + kWindArrowScale * w.measured.x) << "\" y2=\""
-        << py(w.y + kWindArrowScale * w.measured.y) << "\" marker-end=\"url(#arrow)\"/>\n";
+  for (const auto& a : agents) {
+    for (const auto& w : wind_samples(a.steps)) {
+      svg << "<line x1=\"" << px(w.x) << "\" y1=\"" << py(w.y) << "\" x2=\""
+          << px(w.x + kWindArrowScale * w.measured.x) << "\" y2=\""
+          << py(w.y + kWindArrowScale * w.measured.y) << "\" marker-end=\"url(#arrow)\"/>\n";
+    }
   }
   svg << "</g>\n";
 
-  // start and the robot at its last pose
-  if (!steps.empty()) {
-    const Pose& start = steps.front().pose;
-    const Pose& end = steps.back().pose;
+  // each robot's start, where it declared the source, and the robot at its last pose
+  for (std::size_t k = 0; k < agents.size(); ++k) {
+    const auto& a = agents[k];
+    if (a.steps.empty()) continue;
+    const std::string color = robot_color(k);
+    // why: appended, not "-" + to_string(index), which GCC 12 warns of (-Wrestrict)
+    std::string id;
+    if (k > 0) id.append("-").append(std::to_string(a.index));
+    const Pose& start = a.steps.front().pose;
+    const Pose& end = a.steps.back().pose;
     const double r = std::max(4.0, sc.robot.radius * scale);
     const double ex = left + (end.x - sc.arena.x_min) * scale;
     const double ey = top + (sc.arena.y_max - end.y) * scale;
-    svg << "<circle id=\"start\" cx=\"" << px(start.x) << "\" cy=\"" << py(start.y)
-        << "\" r=\"4\" fill=\"none\" stroke=\"#333333\"/>\n"
-        << "<g id=\"robot\"><circle cx=\"" << num(ex) << "\" cy=\"" << num(ey) << "\" r=\""
-        << num(r) << "\" fill=\"" << kRobotColor << "\" stroke=\"#ffffff\"/>"
+    svg << "<circle id=\"start" << id << "\" cx=\"" << px(start.x) << "\" cy=\"" << py(start.y)
+        << "\" r=\"4\" fill=\"none\" stroke=\"" << color << "\"/>\n";
+    if (std::isfinite(a.declared.x) && std::isfinite(a.declared.y)) {
+      const double dx = left + (a.declared.x - sc.arena.x_min) * scale;
+      const double dy = top + (sc.arena.y_max - a.declared.y) * scale;
+      svg << "<path id=\"declared" << id << "\" d=\"M" << num(dx) << "," << num(dy - 7) << " L"
+          << num(dx + 7) << "," << num(dy) << " L" << num(dx) << "," << num(dy + 7) << " L"
+          << num(dx - 7) << "," << num(dy) << " z\" fill=\"#ffffff\" stroke=\"" << color
+          << "\" stroke-width=\"2\"/>\n";
+    }
+    svg << "<g id=\"robot" << id << "\"><circle cx=\"" << num(ex) << "\" cy=\"" << num(ey)
+        << "\" r=\"" << num(r) << "\" fill=\"" << color << "\" stroke=\"#ffffff\"/>"
         << "<line x1=\"" << num(ex) << "\" y1=\"" << num(ey) << "\" x2=\""
         << num(ex + 1.6 * r * std::cos(end.heading)) << "\" y2=\""
-        << num(ey - 1.6 * r * std::sin(end.heading)) << "\" stroke=\"" << kRobotColor
+        << num(ey - 1.6 * r * std::sin(end.heading)) << "\" stroke=\"" << color
         << "\" stroke-width=\"2\"/></g>\n";
   }
 

@@ -96,12 +96,13 @@ json trajectory(const ExpandedSweep& sweep, const std::vector<RunRow>& rows, int
     json x = json::array(), y = json::array(), state = json::array(), odor = json::array();
     const Vec3& c = p.scenario.source.center;
     double closest = INFINITY;
-    for (const auto& s : trace.steps) {
+    const std::vector<TraceStep>& steps = trace.agents.front().steps;
+    for (const auto& s : steps) {
       closest = std::min(closest, std::hypot(s.pose.x - c.x, s.pose.y - c.y));
     }
     // every other step is plenty for a figure
-    for (std::size_t i = 0; i < trace.steps.size(); i += 2) {
-      const auto& s = trace.steps[i];
+    for (std::size_t i = 0; i < steps.size(); i += 2) {
+      const auto& s = steps[i];
       x.push_back(s.pose.x);
       y.push_back(s.pose.y);
       state.push_back(s.state);

@@ -1,15 +1,29 @@
 #pragma once
 
+#include <cmath>
+#include <concepts>
 #include <cstddef>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
+#include "plumetrace/agent/controller.hpp"
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/sim/result.hpp"
 #include "plumetrace/sim/world.hpp"
 
 namespace plumetrace {
 
-/// One row of a trace: the state after a step.
+/// What the formats need to know of a step column besides its value's type.
+struct TraceField {
+  std::string_view name = {};  ///< column (CSV, JSON, the viewer's frames) name
+  std::string_view unit = {};  ///< SI unit, "" for a name, a count or a flag
+  bool nullable = false;       ///< may be NaN: written as null (JSON), "" (CSV)
+  bool sampled = false;        ///< meaningful only when wind_samples > 0: null or "" otherwise
+};
+
+/// One row of a trace: the state of one robot after a step.
 struct TraceStep {
   /// Time since release (s).
   double time = 0.0;
@@ -30,7 +44,69 @@ struct TraceStep {
   /// True wind at the robot's sensor after the step, world frame, x and y (m/s); NaN where a
   /// trace did not record it (format 1 in a wind that varies).
   Vec2 true_wind;
+
+  /// The one list of a trace's step columns, in column order: calls `v(TraceField, value)` for
+  /// each (a double, std::string, bool or int member). The recorder fills them, the CSV and JSON
+  /// traces write and read them, and the viewer's frames carry them. wind_samples comes before
+  /// the columns it makes meaningful.
+  template <class Self, class Visitor>
+  requires std::same_as<std::remove_const_t<Self>, TraceStep>
+  static constexpr void fields(Self& s, Visitor&& v) {
+    v({.name = "time", .unit = "s"}, s.time);
+    v({.name = "x", .unit = "m"}, s.pose.x);
+    v({.name = "y", .unit = "m"}, s.pose.y);
+    v({.name = "heading", .unit = "rad"}, s.pose.heading);
+    v({.name = "odometer", .unit = "m"}, s.odometer);
+    v({.name = "state"}, s.state);
+    v({.name = "odor"}, s.odor);
+    v({.name = "concentration"}, s.concentration);
+    v({.name = "wind_samples"}, s.wind_samples);
+    v({.name = "wind_x_body", .unit = "m/s", .sampled = true}, s.wind_body.x);
+    v({.name = "wind_y_body", .unit = "m/s", .sampled = true}, s.wind_body.y);
+    v({.name = "wind_z_body", .unit = "m/s", .sampled = true}, s.wind_body.z);
+    v({.name = "true_wind_x", .unit = "m/s", .nullable = true}, s.true_wind.x);
+    v({.name = "true_wind_y", .unit = "m/s", .nullable = true}, s.true_wind.y);
+  }
 };
+
+/// Every step column's description, in TraceStep::fields order (for headers and schemas).
+const std::vector<TraceField>& trace_fields();
+
+/// One robot of a trace: who it is, where it started, how it ended and its steps.
+struct AgentTrace {
+  /// Its index in its team.
+  int index = 0;
+  /// Its release pose (m, rad): the origin of its odometry frame.
+  Pose start;
+  /// Where it declared the source (m, world frame); NaN when it did not.
+  Vec2 declared{NAN, NAN};
+  /// Its metrics at the last step recorded.
+  RunResult result;
+  /// One row at release, then one per step while it runs.
+  std::vector<TraceStep> steps;
+};
+
+/// A controller's snapshot (Controller::snapshot) at one instant, moved to the world frame.
+struct ControllerSnapshot {
+  /// Time since release (s).
+  double time = 0.0;
+  /// The agent whose controller it is (its index in the team).
+  int agent = 0;
+  /// The agent's release pose (m, rad): the origin of the odometry frame its grid is in.
+  Pose start;
+  /// Points, path and estimate in the world frame (m); the grid as the controller gave it, in
+  /// the odometry frame (x0, y0, dx, dy), to be drawn rotated by start.heading about start.
+  Snapshot snapshot;
+};
+
+/// The numbers a snapshot holds, as kMaxSnapshotValues counts them: 2 a point, 1 a weight, 2 a
+/// path vertex, 1 a grid cell.
+std::size_t snapshot_values(const Snapshot& snapshot);
+
+/// A snapshot in the odometry frame of a robot released at `start`, moved to the world frame:
+/// points, path and estimate rotated by start.heading and moved by the start position; the grid
+/// is left in the odometry frame.
+Snapshot snapshot_in_world(const Snapshot& odometry, const Pose& start);
 
 /// Positions and widths of every filament at one instant.
 struct FilamentSnapshot {
@@ -65,17 +141,23 @@ WindGrid trace_wind_grid(const Scenario& scenario);
 
 /// Everything recorded about one run, for plots and viewers.
 struct Trace {
-  std::vector<TraceStep> steps;             ///< one row at release, then one per step
+  /// Every robot of robot 0's team, robot 0 first; an empty trace has none.
+  std::vector<AgentTrace> agents;
   std::vector<FilamentSnapshot> snapshots;  ///< filaments at the snapshot interval
-  WindGrid wind_grid;                       ///< where each snapshot's wind was sampled
+  /// The controllers' snapshots at the snapshot interval and at each robot's end, in time order
+  /// (robots in order at one time); a controller that shows nothing has none.
+  std::vector<ControllerSnapshot> controller_snapshots;
+  WindGrid wind_grid;  ///< where each snapshot's wind was sampled
 };
 
-/// Records a World into a Trace; use as the StepObserver of run_once.
+/// Records a World into a Trace: every robot of robot 0's team; use as the StepObserver of
+/// run_once or run_team.
 class TraceRecorder {
  public:
-  /// Snapshots the filaments every `snapshot_interval` seconds (0: never).
+  /// Snapshots the filaments and the controllers every `snapshot_interval` seconds (0: never).
   TraceRecorder(Trace& trace, double snapshot_interval, double dt);
-  /// Appends the world's current state.
+  /// Appends the world's current state; throws ConfigError naming the controller when its state
+  /// name or its snapshot is too large for a trace.
   void operator()(const World& world);
 
  private:

@@ -202,12 +202,9 @@ TEST(ResultFields, TheStoresRunsTableHasTheFieldsInOrderAfterTheRunsKey) {
     store.put_points({sweep});
     store.insert({declared, row});
   }
-  std::vector<Column> expected{{"sweep", "TEXT", true},
-                               {"point", "INTEGER", true},
-                               {"trial", "INTEGER", true},
-                               {"agent", "INTEGER", true},
-                               {"seed", "TEXT", true},
-                               {"config_hash", "TEXT", true}};
+  std::vector<Column> expected{{"sweep", "TEXT", true},    {"point", "INTEGER", true},
+                               {"trial", "INTEGER", true}, {"agent", "INTEGER", true},
+                               {"seed", "TEXT", true},     {"config_hash", "TEXT", true}};
   const RunResult none{};
   RunResult::fields(none, [&](const ResultField& f, const auto& value) {
     using T = std::remove_cvref_t<decltype(value)>;

@@ -495,7 +495,8 @@ TEST(StoreSafety, AMergeKilledBeforeItsFirstCommitCanBeRunAgain) {
 
 // the quick sweep with teams of three robots
 std::vector<ExpandedSweep> teams_of_three() {
-  const Setting three{.key = "team.count", .value = std::int64_t{3}, .text = false, .origin = "--set"};
+  const Setting three{
+      .key = "team.count", .value = std::int64_t{3}, .text = false, .origin = "--set"};
   return {expand_sweep(read_sweep_file(kSweep), {three})};
 }
 
@@ -696,8 +697,7 @@ TEST(StoreUpgrade, AStoreWithoutAgentsEmptiedByFreshTakesTheRunsOfThisSchema) {
 }
 
 TEST(StoreDamage, AnAgentOutsideATeamIsRefusedNamingTheColumn) {
-  expect_edit_refused("UPDATE runs SET agent = -1 WHERE point = 1 AND trial = 2;",
-                      {"agent", "-1"});
+  expect_edit_refused("UPDATE runs SET agent = -1 WHERE point = 1 AND trial = 2;", {"agent", "-1"});
 }
 
 }  // namespace

@@ -265,8 +265,8 @@ const std::vector<std::pair<std::string, std::string>>& run_columns() {
   static const auto columns = [] {
     std::vector<std::pair<std::string, std::string>> c;
     RunRow::key_fields(RunRow{}, [&](std::string_view name, const auto& value) {
-      c.emplace_back(name, std::string(sql_type<std::remove_cvref_t<decltype(value)>>()) +
-                               " NOT NULL");
+      c.emplace_back(name,
+                     std::string(sql_type<std::remove_cvref_t<decltype(value)>>()) + " NOT NULL");
     });
     c.emplace_back("seed", "TEXT NOT NULL");
     c.emplace_back("config_hash", "TEXT NOT NULL");
@@ -1224,8 +1224,8 @@ class RunWriter {
     static const std::string sql = [] {
       std::string where;
       for (const std::string_view name : kRunKeyFields) {
-        where += (where.empty() ? " WHERE " : " AND ") + std::string(name) + " = :" +
-                 std::string(name);
+        where +=
+            (where.empty() ? " WHERE " : " AND ") + std::string(name) + " = :" + std::string(name);
       }
       return std::string(kSelectRuns) + where;
     }();
@@ -1233,8 +1233,8 @@ class RunWriter {
   }
   // where the statements take and give each column
   struct Columns {
-    RunColumnsAt held;                             // the columns of held's rows
-    RunColumnsAt put;                              // the parameters of put
+    RunColumnsAt held;                            // the columns of held's rows
+    RunColumnsAt put;                             // the parameters of put
     std::array<int, kRunKeyFields.size()> key{};  // the parameters of held, in kRunKeyFields order
   };
   // why: a statement's text fixes where its columns are, and these texts never change, so they
@@ -1412,9 +1412,8 @@ std::vector<RunRow> renumbered(const std::vector<RunRow>& rows,
       out.push_back(std::move(copy));
     }
   }
-  std::sort(out.begin(), out.end(), [](const RunRow& a, const RunRow& b) {
-    return RunRow::key_of(a) < RunRow::key_of(b);
-  });
+  std::sort(out.begin(), out.end(),
+            [](const RunRow& a, const RunRow& b) { return RunRow::key_of(a) < RunRow::key_of(b); });
   return out;
 }
 

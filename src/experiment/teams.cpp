@@ -46,7 +46,9 @@ TeamStats summarize_teams(std::span<const TeamOutcome> teams) {
   out.success_rate = static_cast<double>(out.successes) / n;
   out.mean_arrivals = arrivals / n;
   out.mean_d_t_sum = d_t_sum / n;
-  if (out.successes > 0) out.mean_first_arrival = first_arrivals / static_cast<double>(out.successes);
+  if (out.successes > 0) {
+    out.mean_first_arrival = first_arrivals / static_cast<double>(out.successes);
+  }
   return out;
 }
 

@@ -172,8 +172,7 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
   for (const auto& r : rows) {
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
     if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
-    out << key_cells(r, *sweep, keys, "") << ',' << r.result.seed << ','
-        << csv_text(r.config_hash);
+    out << key_cells(r, *sweep, keys, "") << ',' << r.result.seed << ',' << csv_text(r.config_hash);
     RunResult::fields(r.result, [&](const ResultField&, const auto& value) {
       using T = std::remove_cvref_t<decltype(value)>;
       out << ',';
@@ -198,7 +197,8 @@ void write_teams_csv(const std::string& path, const std::vector<ExpandedSweep>& 
   OutputFile file(path);
   auto& out = file.stream();
   out << key_header(keys, "agent");
-  TeamOutcome::fields(TeamOutcome{}, [&](const ResultField& f, const auto&) { out << ',' << f.name; });
+  TeamOutcome::fields(TeamOutcome{},
+                      [&](const ResultField& f, const auto&) { out << ',' << f.name; });
   out << '\n';
   for (const TeamOutcome& t : team_outcomes(rows)) {
     const ExpandedSweep* sweep = find_sweep(sweeps, t.sweep);

@@ -56,9 +56,8 @@ CalibrationResult evaluate_sets(const CalibrationOptions& options) {
 
   // why: a store hands its rows ordered by their run key; the same order makes the overhead
   // sums, hence the statistics, bit-identical to a store-based sweep's
-  std::sort(rows.begin(), rows.end(), [](const RunRow& a, const RunRow& b) {
-    return RunRow::key_of(a) < RunRow::key_of(b);
-  });
+  std::sort(rows.begin(), rows.end(),
+            [](const RunRow& a, const RunRow& b) { return RunRow::key_of(a) < RunRow::key_of(b); });
   for (const ExpandedSweep& sweep : sweeps) {
     result.sets[sweep.def.name] = set_stats(sweep, rows, sweep.def.runs);
   }

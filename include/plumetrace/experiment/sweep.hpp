@@ -142,21 +142,21 @@ struct RunRow {
   /// The run key's members, in kRunKeyFields order, as a tuple of references: orders and
   /// compares rows (`RunRow::key_of(a) < RunRow::key_of(b)`).
   template <class Row>
-    requires std::same_as<std::remove_const_t<Row>, RunRow>
-  static auto key_of(Row& r) {
-    return std::tie(r.sweep, r.point, r.trial, r.agent);
-  }
+  requires std::same_as<std::remove_const_t<Row>, RunRow>
+  static auto key_of(Row& r) { return std::tie(r.sweep, r.point, r.trial, r.agent); }
 
   /// The one list of the run key, in column order: calls `v(name, value)` for sweep, point,
   /// trial and agent. The store's runs table (its columns, primary key and order), runs.csv,
   /// teams.csv, the row message and the Python columns take their key columns from it.
   template <class Row, class Visitor>
-    requires std::same_as<std::remove_cvref_t<Row>, RunRow>
+  requires std::same_as<std::remove_cvref_t<Row>, RunRow>
   static void key_fields(Row&& r, Visitor&& v) {
-    std::apply([&](auto&... member) {
-      std::size_t k = 0;
-      (v(kRunKeyFields[k++], member), ...);
-    }, key_of(r));
+    std::apply(
+        [&](auto&... member) {
+          std::size_t k = 0;
+          (v(kRunKeyFields[k++], member), ...);
+        },
+        key_of(r));
   }
 };
 

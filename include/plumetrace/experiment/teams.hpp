@@ -29,7 +29,7 @@ struct TeamOutcome {
   /// The one list of a team's columns after its key (sweep, point, trial), in order: calls
   /// `v(ResultField, value)` for each; teams.csv writes them.
   template <class Team, class Visitor>
-    requires std::same_as<std::remove_cvref_t<Team>, TeamOutcome>
+  requires std::same_as<std::remove_cvref_t<Team>, TeamOutcome>
   static void fields(Team&& t, Visitor&& v) {
     v({.name = "robots"}, t.robots);
     v({.name = "arrivals"}, t.arrivals);

@@ -493,6 +493,13 @@ TEST(StoreSafety, AMergeKilledBeforeItsFirstCommitCanBeRunAgain) {
 
 // issue 24: the run key with the robot's index ---------------------------------------------------
 
+// runs what `sweeps` define and `store` lacks, `runs` per point (0: the sweep's), on 2 threads
+CampaignResult complete(const std::vector<ExpandedSweep>& sweeps, Store& store, int runs) {
+  CampaignOptions options;
+  options.threads = 2;
+  return run_campaign(sweeps, store, runs, options);
+}
+
 // the quick sweep with teams of three robots
 std::vector<ExpandedSweep> teams_of_three() {
   const Setting three{
@@ -505,9 +512,7 @@ const std::vector<RunRow>& team_rows() {
   static const std::vector<RunRow> rows = [] {
     const auto sweeps = teams_of_three();
     Store store(testing::temp_path("teams", ".sqlite"), sweeps, version(), false);
-    CampaignOptions options;
-    options.threads = 2;
-    const CampaignResult r = run_campaign(sweeps, store, 2, options);
+    const CampaignResult r = complete(sweeps, store, 2);
     EXPECT_EQ(r.total, 8);  // runs: teams, not robots
     EXPECT_EQ(r.computed, 8);
     EXPECT_FALSE(r.interrupted);
@@ -562,9 +567,7 @@ TEST(StoreTeams, ATeamsRowsAreReadInKeyOrderAndNotComputedAgain) {
   EXPECT_TRUE(keys.count({"two", 3, 1, 2}));
   expect_same_rows(store.rows(), rows);
   expect_same_rows(read_store_rows(path, nullptr), rows);
-  CampaignOptions options;
-  options.threads = 2;
-  const CampaignResult again = run_campaign(sweeps, store, 2, options);
+  const CampaignResult again = complete(sweeps, store, 2);
   EXPECT_EQ(again.skipped, 8);
   EXPECT_EQ(again.computed, 0);
   // complete: a trial counts once, with its whole team
@@ -602,9 +605,7 @@ TEST(StoreTeams, PartsHoldingDifferentRobotsMergeAndAPartialTeamIsCompleted) {
 
   // the part without robot 2: every run is computed again, its robots 0 and 1 found identical
   Store resumed(first, sweeps, version(), false);
-  CampaignOptions options;
-  options.threads = 2;
-  const CampaignResult r = run_campaign(sweeps, resumed, 2, options);
+  const CampaignResult r = complete(sweeps, resumed, 2);
   EXPECT_EQ(r.skipped, 0);
   EXPECT_EQ(r.computed, 8);
   expect_same_rows(resumed.rows(), whole);

@@ -50,36 +50,30 @@ TEST(Teams, EachRunIsOneTeamInTheOrderOfItsFirstRow) {
   for (const auto& t : teams) EXPECT_EQ(t.sweep, "s");
 }
 
+// expects a team's numbers; a NaN `first_arrival` expects none
+void expect_team(const TeamOutcome& t, int robots, int arrivals, int first_agent,
+                 double first_arrival, double d_t_sum) {
+  EXPECT_EQ(t.robots, robots);
+  EXPECT_EQ(t.arrivals, arrivals);
+  EXPECT_EQ(t.first_agent, first_agent);
+  if (std::isnan(first_arrival)) {
+    EXPECT_TRUE(std::isnan(t.t_first_arrival));
+  } else {
+    EXPECT_EQ(t.t_first_arrival, first_arrival);
+  }
+  EXPECT_EQ(t.d_t_sum, d_t_sum);
+}
+
 TEST(Teams, TheFirstArrivalIsTheEarliestSuccessAndTheDistanceIsTheSum) {
   const auto teams = team_outcomes(hand_made());
-  const TeamOutcome& two_arrived = teams[0];
-  EXPECT_EQ(two_arrived.robots, 3);
-  EXPECT_EQ(two_arrived.arrivals, 2);
-  EXPECT_EQ(two_arrived.first_agent, 2);
-  EXPECT_EQ(two_arrived.t_first_arrival, 20.0);
-  EXPECT_EQ(two_arrived.d_t_sum, 14.0);
-
-  const TeamOutcome& none = teams[1];
-  EXPECT_EQ(none.robots, 3);
-  EXPECT_EQ(none.arrivals, 0);
-  EXPECT_EQ(none.first_agent, -1);
-  EXPECT_TRUE(std::isnan(none.t_first_arrival));
-  EXPECT_EQ(none.d_t_sum, 3.5);
-
-  const TeamOutcome& alone = teams[2];
-  EXPECT_EQ(alone.robots, 1);
-  EXPECT_EQ(alone.arrivals, 1);
-  EXPECT_EQ(alone.first_agent, 0);
-  EXPECT_EQ(alone.t_first_arrival, 40.0);
-  EXPECT_EQ(alone.d_t_sum, 5.0);
+  expect_team(teams[0], 3, 2, 2, 20.0, 14.0);  // robots 0 and 2 arrived, 2 first
+  expect_team(teams[1], 3, 0, -1, NAN, 3.5);   // none arrived
+  expect_team(teams[2], 1, 1, 0, 40.0, 5.0);   // a robot alone
 }
 
 TEST(Teams, ATieGoesToTheLowestIndexAndAWrongDeclarationIsNoArrival) {
-  const TeamOutcome tie = team_outcomes(hand_made())[3];
-  EXPECT_EQ(tie.arrivals, 2);
-  EXPECT_EQ(tie.first_agent, 0);
-  EXPECT_EQ(tie.t_first_arrival, 15.0);
-  EXPECT_EQ(tie.d_t_sum, 5.5);
+  // robots 1 and 0 arrive at 15 s (1's row first); robot 2 declared wrongly
+  expect_team(team_outcomes(hand_made())[3], 3, 2, 0, 15.0, 5.5);
 }
 
 TEST(Teams, APointsStatisticsAreOverItsTeams) {

@@ -1060,7 +1060,7 @@ py::list export_sweep_store(const py::object& spec, const py::list& overrides,
   return points;
 }
 
-// every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial).
+// every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial, agent).
 // Ctrl-C (any Python signal handler that raises) or an error of a run (a Python controller's
 // exception) stops it: runs not started are dropped, the error is raised here, and the rows
 // finished before it ride on the exception as `partial_rows` (name, columns)
@@ -1144,9 +1144,10 @@ using FieldColumn = std::variant<py::list, std::vector<std::uint8_t>, std::vecto
 
 py::dict sweep_columns(const pt::ExpandedSweep& s, std::vector<pt::RunRow> rows) {
   std::sort(rows.begin(), rows.end(), [](const pt::RunRow& a, const pt::RunRow& b) {
-    return std::tie(a.point, a.trial) < std::tie(b.point, b.trial);
+    return pt::RunRow::key_of(a) < pt::RunRow::key_of(b);
   });
-  std::vector<std::int64_t> point, trial;
+  // the run key's numbers (point, trial, agent; one sweep, so not its name), in key order
+  std::vector<std::vector<std::int64_t>> key(pt::kRunKeyFields.size());
   std::vector<std::uint64_t> seed;
   std::vector<py::list> axis_values(s.def.axes.size());
   std::vector<FieldColumn> fields;
@@ -1155,8 +1156,13 @@ py::dict sweep_columns(const pt::ExpandedSweep& s, std::vector<pt::RunRow> rows)
     fields.emplace_back(std::in_place_type<ColumnOf<std::remove_cvref_t<decltype(value)>>>);
   });
   for (const pt::RunRow& r : rows) {
-    point.push_back(r.point);
-    trial.push_back(static_cast<std::int64_t>(r.trial));
+    std::size_t member = 0;
+    pt::RunRow::key_fields(r, [&](std::string_view, const auto& value) {
+      if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+        key[member].push_back(static_cast<std::int64_t>(value));
+      }
+      ++member;
+    });
     seed.push_back(r.result.seed);
     std::size_t k = 0;
     pt::RunResult::fields(r.result, [&](const pt::ResultField&, const auto& value) {
@@ -1173,12 +1179,19 @@ py::dict sweep_columns(const pt::ExpandedSweep& s, std::vector<pt::RunRow> rows)
       std::visit([&](const auto& v) { axis_values[a].append(v); }, p.values[a]);
     }
   }
+  // the key's columns, the axis values after the point's
   py::dict columns;
-  columns["point"] = to_array(point);
-  for (std::size_t a = 0; a < axis_values.size(); ++a) {
-    columns[py::str(s.def.axes[a].key)] = axis_values[a];
-  }
-  columns["trial"] = to_array(trial);
+  std::size_t member = 0;
+  pt::RunRow::key_fields(pt::RunRow{}, [&](std::string_view name, const auto& value) {
+    const std::size_t k = member++;
+    if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+      columns[py::str(std::string(name))] = to_array(key[k]);
+      if (name != "point") return;
+      for (std::size_t a = 0; a < axis_values.size(); ++a) {
+        columns[py::str(s.def.axes[a].key)] = axis_values[a];
+      }
+    }
+  });
   columns["seed"] = to_array(seed);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const py::str name(std::string(pt::kResultFields[k].name));
@@ -1612,7 +1625,7 @@ PYBIND11_MODULE(_core, m) {
           "the filaments' centres x, y and widths (m) now, as NumPy copies (for rendering)")
       .def("result_json", [](const pt::World& w) {
         const pt::RunResult r = w.result();
-        return pt::result_to_json(r, {"external", r.seed, r.trial});
+        return pt::result_to_json(r, {"external", r.seed, r.trial, r.agent});
       });
 
   // the controller interface (measurement.hpp): what a Python controller sees and returns

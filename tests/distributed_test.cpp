@@ -18,11 +18,13 @@
 namespace plumetrace {
 namespace {
 
-RunRow sample_row(int point, std::uint64_t trial) {
+RunRow sample_row(int point, std::uint64_t trial, int agent = 0) {
   RunRow r;
   r.sweep = "grid-\xc3\xa9";  // any bytes
   r.point = point;
   r.trial = trial;
+  r.agent = agent;
+  r.result.agent = agent;
   r.config_hash = "0123456789abcdef";
   r.result.outcome = Outcome::kGaveUp;
   r.result.time = 0.1 + 0.2;  // not a short decimal
@@ -35,6 +37,8 @@ RunRow sample_row(int point, std::uint64_t trial) {
   r.result.wind_samples = 3;
   r.result.seed = std::numeric_limits<std::uint64_t>::max();
   r.result.trial = trial;
+  r.result.t_first_odor = 0.25;
+  r.result.declaration_error = std::numeric_limits<double>::quiet_NaN();
   return r;
 }
 
@@ -44,6 +48,28 @@ TEST(Wire, RowsTravelWithEveryBit) {
   testing::expect_same_rows(back, rows);
   EXPECT_TRUE(std::signbit(back[0].result.d_u));
   EXPECT_TRUE(decode_rows(encode_rows({})).empty());
+}
+
+TEST(Wire, RowsOfATeamTravelWithTheirAgents) {
+  std::vector<RunRow> rows;
+  for (int agent = 0; agent < 3; ++agent) rows.push_back(sample_row(2, 5, agent));
+  rows.push_back(sample_row(2, 6, kMaxTeam - 1));
+  rows.back().result.outcome = Outcome::kWrongDeclaration;
+  const auto back = decode_rows(encode_rows(rows));
+  testing::expect_same_rows(back, rows);
+  EXPECT_EQ(back[2].agent, 2);
+  EXPECT_EQ(back[3].result.agent, kMaxTeam - 1);
+}
+
+TEST(Wire, AnAgentOutsideATeamIsRefusedLikeAnUnknownOutcome) {
+  for (const int agent : {-1, kMaxTeam}) {
+    RunRow row = sample_row(1, 2);
+    row.agent = agent;
+    EXPECT_THROW(decode_rows(encode_rows({row})), IoError) << agent;
+    row = sample_row(1, 2);
+    row.result.agent = agent;
+    EXPECT_THROW(decode_rows(encode_rows({row})), IoError) << agent;
+  }
 }
 
 TEST(Wire, GroupsTravelWhole) {

@@ -56,6 +56,7 @@ RunResult distinct_result() {
   });
   r.seed = std::numeric_limits<std::uint64_t>::max() - 5;
   r.trial = 3;
+  r.agent = 2;
   return r;
 }
 
@@ -64,6 +65,7 @@ RunRow distinct_row(const ExpandedSweep& sweep) {
   row.sweep = sweep.def.name;
   row.point = 1;
   row.trial = 3;
+  row.agent = 2;
   row.config_hash = sweep.points[1].config_hash;
   row.result = distinct_result();
   return row;
@@ -88,6 +90,32 @@ TEST(ResultFields, TheListIsTheOneFieldsGivesWithEachNameOnce) {
   EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
 }
 
+// the run key's names with the axis keys after point, as runs.csv writes them
+std::vector<std::string> key_header() {
+  std::vector<std::string> names;
+  for (const std::string_view name : kRunKeyFields) {
+    names.emplace_back(name);
+    if (name == "point") {
+      names.insert(names.end(), {"controller.algorithm", "wind_sensor.sigma_a"});
+    }
+  }
+  return names;
+}
+
+TEST(ResultFields, TheRunKeyIsSweepPointTrialAndAgentInThatOrder) {
+  EXPECT_EQ(std::vector<std::string>(kRunKeyFields.begin(), kRunKeyFields.end()),
+            (std::vector<std::string>{"sweep", "point", "trial", "agent"}));
+  RunRow row;
+  row.sweep = "s";
+  row.point = 4;
+  row.trial = 5;
+  row.agent = 6;
+  std::vector<std::string> seen;
+  RunRow::key_fields(row, [&](std::string_view name, const auto&) { seen.emplace_back(name); });
+  EXPECT_EQ(seen, std::vector<std::string>(kRunKeyFields.begin(), kRunKeyFields.end()));
+  EXPECT_EQ(run_key(row), (RunKey{"s", 4, 5, 6}));
+}
+
 TEST(ResultFields, RunsCsvHasTheFieldsInOrderAfterTheRunsKey) {
   const ExpandedSweep sweep = expand_sweep(read_sweep_file(kGoldenSweep), {});
   const std::string path = testing::temp_path("runs", ".csv");
@@ -96,12 +124,14 @@ TEST(ResultFields, RunsCsvHasTheFieldsInOrderAfterTheRunsKey) {
   std::string header, row;
   std::getline(in, header);
   std::getline(in, row);
-  std::vector<std::string> expected{"sweep", "point", "controller.algorithm", "wind_sensor.sigma_a",
-                                    "trial", "seed",  "config_hash"};
+  std::vector<std::string> expected = key_header();
+  expected.insert(expected.end(), {"seed", "config_hash"});
   for (const auto& name : field_names()) expected.push_back(name);
   EXPECT_EQ(split(header), expected);
   const auto cells = split(row);
   ASSERT_EQ(cells.size(), expected.size());
+  EXPECT_EQ(cells[4], "3");  // trial
+  EXPECT_EQ(cells[5], "2");  // agent, right after it
   const std::size_t first = expected.size() - field_names().size();
   EXPECT_EQ(cells[first], "wall");       // outcome
   EXPECT_EQ(cells[first + 1], "0");      // success
@@ -110,14 +140,15 @@ TEST(ResultFields, RunsCsvHasTheFieldsInOrderAfterTheRunsKey) {
 
 TEST(ResultFields, TheResultJsonHasTheFieldsAndTheRunsIdentity) {
   const nlohmann::json j =
-      nlohmann::json::parse(result_to_json(distinct_result(), {"casting", 7, 3}));
-  std::set<std::string> expected{"algorithm", "seed", "trial", "version"};
+      nlohmann::json::parse(result_to_json(distinct_result(), {"casting", 7, 3, 2}));
+  std::set<std::string> expected{"algorithm", "seed", "trial", "agent", "version"};
   for (const auto& name : field_names()) expected.insert(name);
   std::set<std::string> keys;
   for (const auto& [key, value] : j.items()) keys.insert(key);
   EXPECT_EQ(keys, expected);
   EXPECT_EQ(j["outcome"], "wall");
   EXPECT_EQ(j["success"], false);
+  EXPECT_EQ(j["agent"], 2);
 }
 
 TEST(ResultFields, ATraceReadsBackEveryField) {
@@ -125,11 +156,14 @@ TEST(ResultFields, ATraceReadsBackEveryField) {
   Trace trace;
   trace.agents.emplace_back().steps.resize(1);
   const std::string path = testing::temp_path("trace", ".json");
-  write_trace(path, trace, Scenario{}, result, {"casting", result.seed, result.trial});
+  write_trace(path, trace, Scenario{}, result,
+              {"casting", result.seed, result.trial, result.agent});
   const RecordedRun back = read_trace(path);
   EXPECT_EQ(testing::field_bits(back.result), testing::field_bits(result));
   EXPECT_EQ(back.result.seed, result.seed);
   EXPECT_EQ(back.result.trial, result.trial);
+  EXPECT_EQ(back.result.agent, 2);
+  EXPECT_EQ(back.info.agent, 2);
 }
 
 // the columns of table runs: name, declared type, NOT NULL
@@ -159,16 +193,18 @@ TEST(ResultFields, TheStoresRunsTableHasTheFieldsInOrderAfterTheRunsKey) {
   const ExpandedSweep sweep = expand_sweep(read_sweep_file(kGoldenSweep), {});
   const std::string path = testing::temp_path("store", ".sqlite");
   const RunRow row = distinct_row(sweep);
+  // an outcome added since the first schema is a known name too
+  RunRow declared = row;
+  declared.agent = declared.result.agent = 3;
+  declared.result.outcome = Outcome::kWrongDeclaration;
   {
     Store store(path, std::vector<ExpandedSweep>{sweep}, version(), true);
     store.put_points({sweep});
-    store.insert({row});
+    store.insert({declared, row});
   }
-  std::vector<Column> expected{{"sweep", "TEXT", true},
-                               {"point", "INTEGER", true},
-                               {"trial", "INTEGER", true},
-                               {"seed", "TEXT", true},
-                               {"config_hash", "TEXT", true}};
+  std::vector<Column> expected{{"sweep", "TEXT", true},    {"point", "INTEGER", true},
+                               {"trial", "INTEGER", true}, {"agent", "INTEGER", true},
+                               {"seed", "TEXT", true},     {"config_hash", "TEXT", true}};
   const RunResult none{};
   RunResult::fields(none, [&](const ResultField& f, const auto& value) {
     using T = std::remove_cvref_t<decltype(value)>;
@@ -180,7 +216,7 @@ TEST(ResultFields, TheStoresRunsTableHasTheFieldsInOrderAfterTheRunsKey) {
   EXPECT_EQ(run_table(path), expected);
 
   Store store(path, std::vector<ExpandedSweep>{sweep}, version(), false);
-  testing::expect_same_rows(store.rows(), {row});
+  testing::expect_same_rows(store.rows(), {row, declared});  // in key order: agent 2, then 3
 }
 
 TEST(ResultFields, TheRowMessageCarriesEveryField) {
@@ -191,7 +227,7 @@ TEST(ResultFields, TheRowMessageCarriesEveryField) {
 
 TEST(ResultFields, AnOutcomeNameParsesBackAndAnUnknownOneIsRefusedNamingIt) {
   for (const Outcome o : {Outcome::kRunning, Outcome::kSuccess, Outcome::kWall, Outcome::kTimeout,
-                          Outcome::kGaveUp}) {
+                          Outcome::kGaveUp, Outcome::kWrongDeclaration}) {
     EXPECT_EQ(parse_outcome(outcome_name(o)), o);
   }
   try {

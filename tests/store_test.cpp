@@ -9,15 +9,20 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/teams.hpp"
+#include "plumetrace/io/exports.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
@@ -203,9 +208,9 @@ TEST(StoreDamage, AChangedValueALostRunAndAnAddedRunAreRefusedByTheChecksum) {
                       {"checksum"});
   expect_edit_refused("DELETE FROM runs WHERE point = 0 AND trial = 5;", {"checksum", "47"});
   expect_edit_refused(
-      "INSERT INTO runs SELECT sweep, point, trial + 100, seed, config_hash, outcome, success, "
-      "time_s, d_t, d_u, overhead, losses, odor_fraction, steps, wind_samples, t_first_odor, "
-      "d_first_odor, declaration_error FROM runs LIMIT 1;",
+      "INSERT INTO runs SELECT sweep, point, trial + 100, agent, seed, config_hash, outcome, "
+      "success, time_s, d_t, d_u, overhead, losses, odor_fraction, steps, wind_samples, "
+      "t_first_odor, d_first_odor, declaration_error FROM runs LIMIT 1;",
       {"checksum", "49"});
   expect_edit_refused("UPDATE points SET config = config || ' ' WHERE point = 1;",
                       {"points", "checksum"});
@@ -300,7 +305,7 @@ std::string meta_of(const std::string& path, const std::string& key) {
   return value;
 }
 
-TEST(StoreUpgrade, AStoreOfTheFormerSchemaIsReadAsItIsAndExtendedAsSchemaThree) {
+TEST(StoreUpgrade, AStoreOfSchemaTwoIsReadAsItIsAndExtendedAsTheCurrentSchema) {
   // the clean store as the version before this one wrote it: schema 2, no epoch
   const std::string store = copy_of_clean("schema2");
   sql(store,
@@ -317,7 +322,7 @@ TEST(StoreUpgrade, AStoreOfTheFormerSchemaIsReadAsItIsAndExtendedAsSchemaThree) 
     EXPECT_EQ(r.skipped, 48);
     EXPECT_EQ(r.computed, 24);
   }
-  EXPECT_EQ(meta_of(store, "schema"), "3");
+  EXPECT_EQ(meta_of(store, "schema"), "4");
   EXPECT_EQ(meta_of(store, "epoch").size(), 16u);
   const std::vector<RunRow> after = read_store_rows(store, nullptr);
   ASSERT_EQ(after.size(), 72u);
@@ -484,6 +489,216 @@ TEST(StoreSafety, AMergeKilledBeforeItsFirstCommitCanBeRunAgain) {
     EXPECT_EQ(o.code, 0) << o.err;
     EXPECT_EQ(exports(out), exports(clean_store()));
   }
+}
+
+// issue 24: the run key with the robot's index ---------------------------------------------------
+
+// runs what `sweeps` define and `store` lacks, `runs` per point (0: the sweep's), on 2 threads
+CampaignResult complete(const std::vector<ExpandedSweep>& sweeps, Store& store, int runs) {
+  CampaignOptions options;
+  options.threads = 2;
+  return run_campaign(sweeps, store, runs, options);
+}
+
+// the quick sweep with teams of three robots
+std::vector<ExpandedSweep> teams_of_three() {
+  const Setting three{
+      .key = "team.count", .value = std::int64_t{3}, .text = false, .origin = "--set"};
+  return {expand_sweep(read_sweep_file(kSweep), {three})};
+}
+
+// 2 runs per point of teams_of_three, computed once: 4 points x 2 trials x 3 robots = 24 rows
+const std::vector<RunRow>& team_rows() {
+  static const std::vector<RunRow> rows = [] {
+    const auto sweeps = teams_of_three();
+    Store store(testing::temp_path("teams", ".sqlite"), sweeps, version(), false);
+    const CampaignResult r = complete(sweeps, store, 2);
+    EXPECT_EQ(r.total, 8);  // runs: teams, not robots
+    EXPECT_EQ(r.computed, 8);
+    EXPECT_FALSE(r.interrupted);
+    return store.rows();
+  }();
+  return rows;
+}
+
+// the columns of table runs of the store at `path`
+std::vector<std::string> runs_columns(const std::string& path) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* q = nullptr;
+  sqlite3_prepare_v2(db, "PRAGMA table_info(runs)", -1, &q, nullptr);
+  std::vector<std::string> columns;
+  while (sqlite3_step(q) == SQLITE_ROW) {
+    columns.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(q, 1)));
+  }
+  sqlite3_finalize(q);
+  sqlite3_close(db);
+  return columns;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(StoreTeams, ATeamsRowsAreReadInKeyOrderAndNotComputedAgain) {
+  const auto sweeps = teams_of_three();
+  const std::vector<RunRow>& rows = team_rows();
+  ASSERT_EQ(rows.size(), 24u);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].point, static_cast<int>(i / 6)) << i;
+    EXPECT_EQ(rows[i].trial, (i / 3) % 2) << i;
+    EXPECT_EQ(rows[i].agent, static_cast<int>(i % 3)) << i;
+    EXPECT_EQ(rows[i].result.agent, rows[i].agent) << i;
+  }
+  // put, reopened, read again: the same rows; nothing is computed again
+  const std::string path = testing::temp_path("teams_again", ".sqlite");
+  {
+    Store store(path, sweeps, version(), false);
+    store.put_points(sweeps);
+    store.put_plan({{"two", 2}}, "");
+    store.insert(rows);
+  }
+  Store store(path, sweeps, version(), false);
+  const std::set<RunKey> keys = store.keys();
+  EXPECT_EQ(keys.size(), 24u);
+  EXPECT_TRUE(keys.count({"two", 3, 1, 2}));
+  expect_same_rows(store.rows(), rows);
+  expect_same_rows(read_store_rows(path, nullptr), rows);
+  const CampaignResult again = complete(sweeps, store, 2);
+  EXPECT_EQ(again.skipped, 8);
+  EXPECT_EQ(again.computed, 0);
+  // complete: a trial counts once, with its whole team
+  EXPECT_EQ(store.info().stored.at("two"), 8);
+  EXPECT_TRUE(incomplete_points(sweeps, rows, 2).empty());
+  const auto three = incomplete_points(sweeps, rows, 3);
+  ASSERT_EQ(three.size(), 4u);
+  EXPECT_EQ(three[0].stored, 2);
+}
+
+TEST(StoreTeams, PartsHoldingDifferentRobotsMergeAndAPartialTeamIsCompleted) {
+  const auto sweeps = teams_of_three();
+  const std::vector<RunRow>& whole = team_rows();
+  // a store of the campaign holding the rows `keep` selects
+  const auto part = [&](const std::string& stem, const auto& keep) {
+    const std::string path = testing::temp_path(stem, ".sqlite");
+    Store store(path, sweeps, version(), false);
+    store.put_points(sweeps);
+    store.put_plan({{"two", 2}}, "");
+    std::vector<RunRow> some;
+    for (const RunRow& r : whole) {
+      if (keep(r)) some.push_back(r);
+    }
+    store.insert(some);
+    return path;
+  };
+  const std::string first = part("robots01", [](const RunRow& r) { return r.agent < 2; });
+  const std::string second = part("robot2", [](const RunRow& r) { return r.agent == 2; });
+  const std::string out = testing::temp_path("merged_teams", ".sqlite");
+  const MergeReport report = merge_stores({first, second}, out);
+  EXPECT_EQ(report.added, 24);
+  EXPECT_EQ(report.total, 24);
+  EXPECT_TRUE(report.gaps.empty());
+  expect_same_rows(read_store_rows(out, nullptr), whole);
+
+  // the part without robot 2: every run is computed again, its robots 0 and 1 found identical
+  Store resumed(first, sweeps, version(), false);
+  const CampaignResult r = complete(sweeps, resumed, 2);
+  EXPECT_EQ(r.skipped, 0);
+  EXPECT_EQ(r.computed, 8);
+  expect_same_rows(resumed.rows(), whole);
+}
+
+TEST(StoreTeams, TheExportsHaveTheAgentAfterTheTrialAndOneTeamRowPerRun) {
+  const auto sweeps = teams_of_three();
+  const std::vector<RunRow>& rows = team_rows();
+  const std::string out = testing::temp_path("team_exports", "");
+  make_output_folder(out, "--out");
+  write_exports(out, sweeps, rows, 2);
+
+  const auto runs = lines_of(read_file(out + "/runs.csv"));
+  ASSERT_EQ(runs.size(), 25u);
+  EXPECT_EQ(runs[0].rfind("sweep,point,plume.sigma_p,controller.algorithm,trial,agent,seed,", 0),
+            0u)
+      << runs[0];
+  EXPECT_EQ(runs[3].rfind("two,0,0.1,casting,0,2,31,", 0), 0u) << runs[3];
+
+  const auto teams = lines_of(read_file(out + "/teams.csv"));
+  ASSERT_EQ(teams.size(), 9u);
+  EXPECT_EQ(teams[0],
+            "sweep,point,plume.sigma_p,controller.algorithm,trial,robots,arrivals,first_agent,"
+            "t_first_arrival,d_t_sum");
+  const auto outcomes = team_outcomes(rows);
+  ASSERT_EQ(outcomes.size(), 8u);
+  for (std::size_t k = 0; k < outcomes.size(); ++k) {
+    const std::string cells = std::to_string(outcomes[k].robots) + "," +
+                              std::to_string(outcomes[k].arrivals) + "," +
+                              std::to_string(outcomes[k].first_agent) + ",";
+    EXPECT_NE(teams[k + 1].find("," + std::to_string(outcomes[k].trial) + "," + cells),
+              std::string::npos)
+        << teams[k + 1];
+  }
+
+  const auto doc = nlohmann::json::parse(read_file(out + "/results.json"));
+  const auto& point = doc["sweeps"][0]["points"][0];
+  EXPECT_EQ(point["stats"]["runs"], 6);  // every robot's run
+  EXPECT_EQ(point["team"]["teams"], 2);
+  EXPECT_EQ(point["team"]["robots"], 3);
+  ASSERT_EQ(point["runs"].size(), 6u);
+  EXPECT_EQ(point["runs"][4]["trial"], 1);
+  EXPECT_EQ(point["runs"][4]["agent"], 1);
+}
+
+// stores as earlier builds wrote them (2 runs per point of the quick sweep): by version 0.4.0
+// (schema 3, no agent, no plume-finding fields) and by a build of 0.4.0 with the fields of issue
+// 24 but no agent yet
+const std::vector<std::string> kOlderStores{
+    PLUMETRACE_SOURCE_DIR "/tests/support/store_0.4.0.sqlite",
+    PLUMETRACE_SOURCE_DIR "/tests/support/store_schema3_team_fields.sqlite"};
+
+TEST(StoreUpgrade, AStoreWithoutAgentsIsReadAsRobotZerosAndGainsTheColumnWhenWritten) {
+  for (const std::string& fixture : kOlderStores) {
+    const std::string store = testing::temp_path("older", ".sqlite");
+    fs::copy_file(fixture, store);
+    const StoreContents before = read_store(store);
+    ASSERT_EQ(before.rows.size(), 8u) << fixture;
+    for (const RunRow& r : before.rows) {
+      EXPECT_EQ(r.agent, 0);
+      EXPECT_EQ(r.result.agent, 0);
+    }
+    EXPECT_EQ(std::isnan(before.rows[0].result.t_first_odor), fixture == kOlderStores[0]);
+    EXPECT_EQ(before.info.stored.at("two"), 8);
+
+    // written by this version (the store refuses another's): its runs table made anew with every
+    // column, in one transaction, the checksums those of what it holds
+    sql(store, "UPDATE meta SET value = '" + std::string(version()) + "' WHERE key = 'version';");
+    { Store upgraded(store, before.info.definition, version(), false); }
+    EXPECT_EQ(meta_of(store, "schema"), "4");
+    EXPECT_EQ(runs_columns(store), runs_columns(clean_store()));
+    const StoreContents after = read_store(store);  // checked, checksums included
+    expect_same_rows(after.rows, before.rows);
+    EXPECT_EQ(after.info.stored, before.info.stored);
+    // and merged as a part like any store of this schema
+    const std::string merged = testing::temp_path("older_merged", ".sqlite");
+    EXPECT_EQ(merge_stores({store}, merged).added, 8);
+    expect_same_rows(read_store_rows(merged, nullptr), before.rows);
+  }
+}
+
+TEST(StoreUpgrade, AStoreWithoutAgentsEmptiedByFreshTakesTheRunsOfThisSchema) {
+  const std::string store = testing::temp_path("older_fresh", ".sqlite");
+  fs::copy_file(kOlderStores[0], store);
+  const auto sweeps = two_plumes();
+  Store fresh(store, sweeps, version(), true);
+  EXPECT_EQ(runs_columns(store), runs_columns(clean_store()));
+  EXPECT_EQ(run_campaign(sweeps, fresh, 1, {}).computed, 4);
+  EXPECT_EQ(read_store_rows(store, nullptr).size(), 4u);
+}
+
+TEST(StoreDamage, AnAgentOutsideATeamIsRefusedNamingTheColumn) {
+  expect_edit_refused("UPDATE runs SET agent = -1 WHERE point = 1 AND trial = 2;", {"agent", "-1"});
 }
 
 }  // namespace

@@ -557,10 +557,10 @@ std::string exports_of(const std::vector<ExpandedSweep>& sweeps, const std::vect
 // the rows of `all` whose key is among `some`'s
 std::vector<RunRow> same_keys(const std::vector<RunRow>& all, const std::vector<RunRow>& some) {
   std::set<RunKey> keys;
-  for (const auto& r : some) keys.emplace(r.sweep, r.point, r.trial);
+  for (const auto& r : some) keys.insert(run_key(r));
   std::vector<RunRow> out;
   for (const auto& r : all) {
-    if (keys.count({r.sweep, r.point, r.trial})) out.push_back(r);
+    if (keys.count(run_key(r))) out.push_back(r);
   }
   return out;
 }

@@ -81,10 +81,12 @@ int RunCommand::run() {
   // print the results before writing the trace, so a failing write loses nothing computed; a
   // robot alone prints what it always did, a team one line (JSON) or block per robot
   for (const RunResult& r : results) {
+    RunInfo robot = info;
+    robot.agent = r.agent;
     if (json) {
-      std::cout << result_to_json(r, info) << std::endl;
+      std::cout << result_to_json(r, robot) << std::endl;
     } else {
-      print_human(r, info, s.team.count);
+      print_human(r, robot, s.team.count);
     }
   }
   if (!trace_path.empty()) {

@@ -28,7 +28,8 @@ def algorithms():
 def result_fields():
     """The per-run metrics in column order, each a dict with ``name``, ``unit`` ("" for none)
     and ``nullable`` (NaN allowed). A run's dict has these keys and a sweep's rows these columns,
-    after ``point``, the axis keys, ``trial`` and ``seed``."""
+    after ``point``, the axis keys, ``trial``, ``agent`` (the robot's index in its team, 0 for a
+    robot alone) and ``seed``."""
     return list(_core.result_fields())
 
 
@@ -160,7 +161,8 @@ def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, override
     master seed `seed` (default 1), `name` and `title` (plumetrace.sweeps.sweep_spec). `runs`:
     runs per point (0: the file's, 10 for a dict); `threads`: 0 for all cores;
     `overrides`/keyword arguments change keys of the base scenario (not an axis key);
-    `controller`: as in run(). Returns SweepRows, sorted by (point, trial).
+    `controller`: as in run(). Returns SweepRows, one row per robot of each run (column
+    ``agent``: its index in the team, 0 for a robot alone), sorted by (point, trial, agent).
 
     Ctrl-C, or an exception a controller raises, stops the sweep: runs not yet started are
     dropped and the exception is raised here with the rows finished before it as its

@@ -127,7 +127,7 @@ def summary(rows):
     success = np.asarray(cols["success"], dtype=bool)
     overhead = np.asarray(cols["overhead"], dtype=float)
     for point in dict.fromkeys(cols["point"].tolist()):
-        # why: rows are sorted by (point, trial), so these are the runs in the order the C++
+        # why: rows are sorted by (point, trial, agent), so these are the runs in the order the C++
         # summary sums them: the same floating-point results, bit for bit
         sel = cols["point"] == point
         first = int(np.flatnonzero(sel)[0])

@@ -125,7 +125,8 @@ def read_runs_csv(path):
 def test_sweep_equals_the_command_line_sweep(tmp_path):
     rows = pt.sweep(GOLDEN, runs=3, threads=2)
     cli("sweep", GOLDEN, "--runs", 3, "--out", tmp_path, "--quiet", "--threads", 2)
-    theirs = sorted(read_runs_csv(tmp_path / "runs.csv"), key=lambda r: (int(r["point"]), int(r["trial"])))
+    theirs = sorted(read_runs_csv(tmp_path / "runs.csv"),
+                    key=lambda r: (int(r["point"]), int(r["trial"]), int(r["agent"])))
     assert len(rows) == len(theirs) == 18
     for mine, row in zip(rows, theirs):
         assert mine["point"] == int(row["point"]) and mine["trial"] == int(row["trial"])
@@ -141,12 +142,27 @@ def test_runs_sweep_rows_and_runs_csv_have_the_result_fields_in_order(tmp_path):
     assert names[:2] == ["outcome", "success"] and len(set(names)) == len(names)
     axes = ["controller.algorithm", "wind_sensor.sigma_a"]
     rows = pt.sweep(GOLDEN, runs=1)
-    assert rows.keys() == ["point", *axes, "trial", "seed", *names]
+    assert rows.keys() == ["point", *axes, "trial", "agent", "seed", *names]
     assert list(rows.to_numpy()) == rows.keys()
-    assert set(pt.run(trace=False)) == {"algorithm", "seed", "trial", "version", *names}
+    assert set(pt.run(trace=False)) == {"algorithm", "seed", "trial", "agent", "version", *names}
     cli("sweep", GOLDEN, "--runs", 1, "--out", tmp_path, "--quiet")
     header = (tmp_path / "runs.csv").read_text().splitlines()[0].split(",")
-    assert header == ["sweep", "point", *axes, "trial", "seed", "config_hash", *names]
+    assert header == ["sweep", "point", *axes, "trial", "agent", "seed", "config_hash", *names]
+
+
+def test_a_teams_sweep_has_a_row_per_robot_like_its_runs_csv(tmp_path):
+    rows = pt.sweep(GOLDEN, runs=2, team__count=2)
+    cols = rows.to_numpy()
+    assert len(rows) == 6 * 2 * 2
+    assert cols["agent"].tolist() == [0, 1] * 12
+    assert cols["trial"].tolist() == [0, 0, 1, 1] * 6
+    cli("sweep", GOLDEN, "--runs", 2, "--set", "team.count=2", "--out", tmp_path, "--quiet")
+    theirs = read_runs_csv(tmp_path / "runs.csv")
+    assert [(int(r["point"]), int(r["trial"]), int(r["agent"])) for r in theirs] == list(
+        zip(cols["point"].tolist(), cols["trial"].tolist(), cols["agent"].tolist()))
+    assert [float(r["d_t"]) for r in theirs] == cols["d_t"].tolist()
+    teams = read_runs_csv(tmp_path / "teams.csv")
+    assert len(teams) == 12 and {t["robots"] for t in teams} == {"2"}
 
 
 def test_sweep_rows_do_not_depend_on_threads_or_plume_sharing():

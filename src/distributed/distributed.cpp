@@ -97,19 +97,26 @@ int threads_per_rank(const Ranks& ranks, int threads) {
 
 namespace {
 
-// a result field's value as it travels: an outcome as a 32-bit integer, any other as it is
+// a key member's or result field's value as it travels: an outcome and an int as a 32-bit
+// integer, any other as it is
 template <class T>
 auto on_wire(const T& value) {
-  if constexpr (std::is_same_v<T, Outcome>) {
+  if constexpr (std::is_same_v<T, Outcome> || std::is_same_v<T, int>) {
     return static_cast<std::int32_t>(value);
   } else {
     return value;
   }
 }
 
-// the bytes of a row in a message, besides its two texts: its key, seed, trial and result fields
-constexpr std::size_t kRowBytes = [] {
-  std::size_t n = 2 * sizeof(std::uint32_t) + sizeof(std::int32_t) + 3 * sizeof(std::uint64_t);
+// the bytes of a row in a message, besides its two texts (sweep, config_hash): the rest of its
+// key, its seed, the result's trial and agent, and its result fields
+const std::size_t kRowBytes = [] {
+  std::size_t n = 2 * sizeof(std::uint32_t) + 2 * sizeof(std::uint64_t) + sizeof(std::int32_t);
+  RunRow::key_fields(RunRow{}, [&](std::string_view, const auto& value) {
+    if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+      n += sizeof(on_wire(value));
+    }
+  });
   const RunResult r{};
   RunResult::fields(r, [&](const ResultField&, auto&& value) {
     if constexpr (!kDerivedField<decltype(value)>) n += sizeof(on_wire(value));
@@ -126,12 +133,11 @@ std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
   w.reserve(size);
   w.put(static_cast<std::uint32_t>(rows.size()));
   for (const RunRow& r : rows) {
-    w.put(r.sweep);
-    w.put(static_cast<std::int32_t>(r.point));
-    w.put(r.trial);
+    RunRow::key_fields(r, [&](std::string_view, const auto& value) { w.put(on_wire(value)); });
     w.put(r.config_hash);
     w.put(r.result.seed);
     w.put(r.result.trial);
+    w.put(on_wire(r.result.agent));
     RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
       if constexpr (!kDerivedField<decltype(value)>) w.put(on_wire(value));
     });
@@ -139,16 +145,33 @@ std::vector<char> encode_rows(const std::vector<RunRow>& rows) {
   return w.take();
 }
 
+namespace {
+
+// why: a robot's index is one of a team's, 0 to kMaxTeam - 1, as an outcome is a known one
+void check_agent(std::int64_t value) {
+  if (value < 0 || value >= kMaxTeam) throw IoError("MPI: a message holds an unknown agent");
+}
+
+}  // namespace
+
 std::vector<RunRow> decode_rows(const std::vector<char>& bytes) {
   Reader in(bytes);
   std::vector<RunRow> rows(in.get<std::uint32_t>());
   for (RunRow& r : rows) {
-    r.sweep = in.text();
-    r.point = in.get<std::int32_t>();
-    r.trial = in.get<std::uint64_t>();
+    RunRow::key_fields(r, [&](std::string_view name, auto& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if constexpr (std::is_same_v<T, std::string>) {
+        value = in.text();
+      } else {
+        value = static_cast<T>(in.get<decltype(on_wire(value))>());
+        if (name == "agent") check_agent(static_cast<std::int64_t>(value));
+      }
+    });
     r.config_hash = in.text();
     r.result.seed = in.get<std::uint64_t>();
     r.result.trial = in.get<std::uint64_t>();
+    r.result.agent = in.get<std::int32_t>();
+    check_agent(r.result.agent);
     RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
       using T = std::remove_cvref_t<decltype(value)>;
       if constexpr (kDerivedField<decltype(value)>) {

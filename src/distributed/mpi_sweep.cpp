@@ -180,13 +180,13 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
   CampaignResult result;
   result.total = static_cast<std::int64_t>(tasks.size());
   std::vector<RunRow> pending;
-  std::int64_t received = 0;  // rows from every rank, committed or pending
+  std::int64_t received = 0;  // runs (tasks) from every rank, committed or pending
   std::optional<Clock::time_point> all_in;
   auto last_commit = Clock::now();
   const auto commit = [&] {
     if (!pending.empty()) {
       sink(pending);
-      result.computed += static_cast<std::int64_t>(pending.size());
+      result.computed += runs_of(pending);
       pending.clear();
     }
     last_commit = Clock::now();
@@ -215,8 +215,8 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
         }
       } else if (m->tag == kRows) {
         auto rows = decode_rows(m->bytes);
-        per_rank[static_cast<std::size_t>(m->source)] += static_cast<std::int64_t>(rows.size());
-        received += static_cast<std::int64_t>(rows.size());
+        per_rank[static_cast<std::size_t>(m->source)] += runs_of(rows);
+        received += runs_of(rows);
         for (auto& r : rows) pending.push_back(std::move(r));
       } else if (m->tag == kBye) {
         const bool early = state == Worker::kWorking;
@@ -228,8 +228,8 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
       }
     }
     GroupPool::Batch own = pool.take(busy ? 0.0 : 0.001);
-    per_rank[0] += static_cast<std::int64_t>(own.rows.size());
-    received += static_cast<std::int64_t>(own.rows.size());
+    per_rank[0] += runs_of(own.rows);
+    received += runs_of(own.rows);
     for (auto& r : own.rows) pending.push_back(std::move(r));
     outbox.progress();
     // a run of this rank failed (a controller's error): keep what is in, then end the job

@@ -1,6 +1,7 @@
 #include "plumetrace/experiment/campaign.hpp"
 
 #include <map>
+#include <set>
 
 namespace plumetrace {
 
@@ -79,6 +80,20 @@ std::int64_t check_campaign(const std::vector<ExpandedSweep>& sweeps, int runs_o
                     " one command may run (split the sweep, or use fewer runs per point)");
 }
 
+namespace {
+
+// whether `done` holds trial t of point p with every robot of its team (a team's rows are stored
+// together, but a merge may bring them from parts that each hold some)
+bool stored(const std::set<RunKey>& done, const std::string& sweep, const SweepPoint& p,
+            std::uint64_t t) {
+  for (int agent = 0; agent < p.scenario.team.count; ++agent) {
+    if (!done.count({sweep, p.index, t, agent})) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
                                   const std::set<RunKey>& done, int runs_override,
                                   const Shard& shard) {
@@ -97,7 +112,7 @@ std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
             continue;
           }
         }
-        if (done.count({sweeps[s].def.name, p.index, t})) continue;
+        if (stored(done, sweeps[s].def.name, p, t)) continue;
         tasks.push_back({static_cast<int>(s), p.index, t});
       }
     }
@@ -148,21 +163,16 @@ std::vector<RunResult> point_runs(const std::vector<RunRow>& rows, const std::st
 
 std::vector<IncompletePoint> incomplete_points(const std::vector<ExpandedSweep>& sweeps,
                                                const std::vector<RunRow>& rows, int runs_override) {
-  std::map<std::pair<std::string, int>, std::int64_t> stored;
-  std::map<std::string, int> runs_of;
-  for (const auto& s : sweeps) runs_of[s.def.name] = runs_per_point(s, runs_override);
-  for (const auto& r : rows) {
-    const auto runs = runs_of.find(r.sweep);
-    if (runs != runs_of.end() && r.trial < static_cast<std::uint64_t>(runs->second)) {
-      ++stored[{r.sweep, r.point}];
-    }
-  }
+  std::set<RunKey> done;
+  for (const auto& r : rows) done.insert(run_key(r));
   std::vector<IncompletePoint> out;
   for (const auto& s : sweeps) {
     const int runs = runs_per_point(s, runs_override);
     for (const auto& p : s.points) {
-      const auto it = stored.find({s.def.name, p.index});
-      const std::int64_t have = it == stored.end() ? 0 : it->second;
+      std::int64_t have = 0;
+      for (int trial = 0; trial < runs; ++trial) {
+        have += stored(done, s.def.name, p, static_cast<std::uint64_t>(trial)) ? 1 : 0;
+      }
       if (have < runs) out.push_back({s.def.name, p.index, axis_values_text(s.def, p), have, runs});
     }
   }

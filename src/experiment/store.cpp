@@ -34,11 +34,18 @@ namespace {
 
 // the schema this version writes: schema 1 plus a checksum of the runs and of the points in meta
 // (schema 2), plus points numbered by the store, found by their values, and an epoch in meta that
-// --fresh renews (schema 3); stores of schemas 1 and 2 are read as they are (their points are
-// numbered in grid order, which is one numbering of schema 3) and upgraded when next written
-constexpr std::string_view kSchemaVersion = "3";
+// --fresh renews (schema 3), plus the robot's index in its team, `agent`, in the runs' key (schema
+// 4); stores of schemas 1 to 3 are read as they are (their points are numbered in grid order,
+// which is one numbering of schema 3; their runs are robot 0's) and upgraded when next written
+constexpr std::string_view kSchemaVersion = "4";
 constexpr std::string_view kLegacySchema = "1";
 constexpr std::string_view kSchema2 = "2";
+constexpr std::string_view kSchema3 = "3";
+// the columns of table runs that a store of an older schema may lack: the agent (schema 4) and
+// the result fields that came with it (which builds between 0.4.0 and schema 4 wrote under
+// schema 3); read as agent 0 and NULL, and added when the store is next written
+constexpr std::array<std::string_view, 4> kAddedColumns{"agent", "t_first_odor", "d_first_odor",
+                                                        "declaration_error"};
 // why: a merge holds the store for seconds; another process writing it waits that long
 constexpr int kBusyTimeoutMs = 60000;
 
@@ -238,35 +245,31 @@ void exec_sql(sqlite3* db, const std::string& path, const std::string& sql) {
   if (rc != SQLITE_OK) fail(db, rc, path);
 }
 
-// the columns of table runs before the result fields: the run's key, its seed (TEXT keeps the
-// full unsigned 64-bit seed) and its point's config_hash
-constexpr std::array<std::pair<std::string_view, std::string_view>, 5> kRunKeyColumns{{
-    {"sweep", "TEXT NOT NULL"},
-    {"point", "INTEGER NOT NULL"},
-    {"trial", "INTEGER NOT NULL"},
-    {"seed", "TEXT NOT NULL"},
-    {"config_hash", "TEXT NOT NULL"},
-}};
-
-// the SQL type of a result field's value: an outcome by its name, a flag as 0 or 1
+// the SQL type of a key member's or a result field's value: a name as text, an outcome by its
+// name, a flag as 0 or 1
 template <class T>
 constexpr std::string_view sql_type() {
-  if constexpr (std::is_same_v<T, Outcome>) {
+  if constexpr (std::is_same_v<T, Outcome> || std::is_same_v<T, std::string>) {
     return "TEXT";
   } else if constexpr (std::is_floating_point_v<T>) {
     return "REAL";
   } else {
-    static_assert((std::is_integral_v<T> && std::is_signed_v<T>) || std::is_same_v<T, bool>,
-                  "a stored integer field is an int or a std::int64_t");
+    static_assert(std::is_integral_v<T>, "a stored integer is an integer or a flag");
     return "INTEGER";
   }
 }
 
-// the columns of table runs and their declarations: the key columns, then RunResult::fields
+// the columns of table runs and their declarations: the run key (RunRow::key_fields), the seed
+// (TEXT keeps the full unsigned 64-bit seed) and the point's config_hash, then RunResult::fields
 const std::vector<std::pair<std::string, std::string>>& run_columns() {
   static const auto columns = [] {
     std::vector<std::pair<std::string, std::string>> c;
-    for (const auto& [name, decl] : kRunKeyColumns) c.emplace_back(name, decl);
+    RunRow::key_fields(RunRow{}, [&](std::string_view name, const auto& value) {
+      c.emplace_back(name,
+                     std::string(sql_type<std::remove_cvref_t<decltype(value)>>()) + " NOT NULL");
+    });
+    c.emplace_back("seed", "TEXT NOT NULL");
+    c.emplace_back("config_hash", "TEXT NOT NULL");
     const RunResult r{};
     RunResult::fields(r, [&](const ResultField& f, const auto& value) {
       const std::string_view type = sql_type<std::remove_cvref_t<decltype(value)>>();
@@ -286,6 +289,15 @@ std::string run_column_list(std::string_view prefix) {
   return list;
 }
 
+// the run key's column names, comma-separated (a primary key, an ORDER BY)
+std::string run_key_list() {
+  std::string list;
+  for (const std::string_view name : kRunKeyFields) {
+    list += (list.empty() ? "" : ", ") + std::string(name);
+  }
+  return list;
+}
+
 // the tables of a store, made when it is new
 const std::string& schema_sql() {
   static const std::string sql = [] {
@@ -299,7 +311,7 @@ CREATE TABLE IF NOT EXISTS points (
   PRIMARY KEY (sweep, point));
 CREATE TABLE IF NOT EXISTS runs (
 )sql" + runs +
-           "  PRIMARY KEY (sweep, point, trial));\n";
+           "  PRIMARY KEY (" + run_key_list() + "));\n";
   }();
   return sql;
 }
@@ -433,6 +445,34 @@ void check_size(sqlite3* db, const std::string& path) {
   }
 }
 
+// the columns of a table, in order
+std::vector<std::string> table_columns(sqlite3* db, const std::string& path,
+                                       const std::string& table) {
+  std::string quoted;
+  for (const char c : table) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  Statement q(db, ("PRAGMA table_info(\"" + quoted + "\")").c_str(), path);
+  std::vector<std::string> columns;
+  while (q.step()) columns.push_back(q.text("name"));
+  return columns;
+}
+
+bool is_added_column(std::string_view name) {
+  return std::find(kAddedColumns.begin(), kAddedColumns.end(), name) != kAddedColumns.end();
+}
+
+// whether `columns` are those of table runs as a store of an older schema has them: this
+// schema's with some of kAddedColumns left out, the others in order
+bool is_older_runs_table(const std::vector<std::string>& columns) {
+  std::vector<std::string> kept;
+  for (const auto& name : schema_columns().at("runs")) {
+    if (!is_added_column(name) ||
+        std::find(columns.begin(), columns.end(), name) != columns.end()) {
+      kept.push_back(name);
+    }
+  }
+  return kept == columns;
+}
+
 enum class Layout {
   kEmpty,       // no tables, or plumetrace's tables without a row
   kPlumetrace,  // plumetrace's tables
@@ -458,12 +498,10 @@ Layout layout_of(sqlite3* db, const std::string& path, std::string* found = null
   }
   if (tables.empty() && !foreign) return Layout::kEmpty;
   for (auto& [name, cols] : tables) {
-    std::string quoted;
-    for (const char c : name) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    Statement q(db, ("PRAGMA table_info(\"" + quoted + "\")").c_str(), path);
-    while (q.step()) cols.push_back(q.text("name"));
+    cols = table_columns(db, path, name);
     const auto it = columns.find(name);
-    foreign = foreign || it == columns.end() || it->second != cols;
+    foreign = foreign || it == columns.end() ||
+              (it->second != cols && !(name == "runs" && is_older_runs_table(cols)));
   }
   foreign = foreign || tables.size() != columns.size();
   if (foreign) {
@@ -562,15 +600,40 @@ std::array<std::uint64_t, kStoredFields> stored_bits(const RunResult& m) {
   return bits;
 }
 
-std::uint64_t hash_of(const RunRow& r) {
+// where the columns of table runs are in a statement, found by their names: its parameters
+// (":time_s") in an INSERT, or its result columns in a SELECT; -1 for a column that the table of
+// a store of an older schema lacks (one of kAddedColumns)
+struct RunColumnsAt {
+  std::array<int, kRunKeyFields.size()> key{};  // in kRunKeyFields order
+  int seed = 0, config_hash = 0;
+  std::vector<int> fields;  // one per result field, in RunResult::fields order
+  int rowid = 0;            // in a SELECT
+};
+
+// every column of this schema's table runs (for what depends only on which columns there are)
+const RunColumnsAt& every_run_column() {
+  static const RunColumnsAt at{.key = {}, .fields = std::vector<int>(kResultFields.size(), 0)};
+  return at;
+}
+
+// a run's hash over the columns its table has (`at`): a store's checksum covers what it holds,
+// so that the checksums of an older schema stay those it wrote
+std::uint64_t hash_of(const RunRow& r, const RunColumnsAt& at = every_run_column()) {
   RowHash h;
-  h.add(r.sweep)
-      .add(static_cast<std::int64_t>(r.point))
-      .add(r.trial)
-      .add(r.result.seed)
-      .add(r.config_hash);
+  std::size_t k = 0;
+  RunRow::key_fields(r, [&](std::string_view, const auto& value) {
+    if (at.key[k++] < 0) return;
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+      h.add(value);
+    } else {
+      h.add(static_cast<std::int64_t>(value));
+    }
+  });
+  h.add(r.result.seed).add(r.config_hash);
+  k = 0;
   RunResult::fields(r.result, [&](const ResultField&, auto&& value) {
     using T = std::remove_cvref_t<decltype(value)>;
+    if (at.fields[k++] < 0) return;
     if constexpr (kDerivedField<decltype(value)>) {
       return;
     } else if constexpr (std::is_same_v<T, Outcome>) {
@@ -624,9 +687,18 @@ std::optional<Checksum> parse_checksum(const std::string& text) {
   return c;
 }
 
+// "sweep NAME, point P, trial T, agent A"
 std::string key_text(const RunRow& r) {
-  return "sweep " + shown(r.sweep) + ", point " + std::to_string(r.point) + ", trial " +
-         std::to_string(r.trial);
+  std::string text;
+  RunRow::key_fields(r, [&](std::string_view name, const auto& value) {
+    text += (text.empty() ? "" : ", ") + std::string(name) + " ";
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+      text += shown(value);
+    } else {
+      text += std::to_string(value);
+    }
+  });
+  return text;
 }
 
 const char* type_name(int type) {
@@ -682,22 +754,12 @@ class RowReader {
   std::string row_;
 };
 
-// where the columns of table runs are in a statement, found by their names: its parameters
-// (":time_s") in an INSERT, or its result columns in a SELECT
-struct RunColumnsAt {
-  int sweep = 0, point = 0, trial = 0, seed = 0, config_hash = 0;
-  std::vector<int> fields;  // one per result field, in RunResult::fields order
-  int rowid = 0;            // in a SELECT
-};
-
 template <class Find>
 RunColumnsAt locate_run_columns(Find find) {
-  RunColumnsAt at{.sweep = find("sweep"),
-                  .point = find("point"),
-                  .trial = find("trial"),
-                  .seed = find("seed"),
-                  .config_hash = find("config_hash"),
-                  .fields = {}};
+  RunColumnsAt at;
+  for (std::size_t k = 0; k < kRunKeyFields.size(); ++k) at.key[k] = find(kRunKeyFields[k]);
+  at.seed = find("seed");
+  at.config_hash = find("config_hash");
   for (const ResultField& f : kResultFields) at.fields.push_back(find(f.name));
   return at;
 }
@@ -708,12 +770,14 @@ RunColumnsAt run_parameters(const Statement& put) {
       [&](std::string_view name) { return put.parameter((":" + std::string(name)).c_str()); });
 }
 
-// the result columns of a SELECT of every column of table runs and the rowid
+// the result columns of a SELECT of every column of table runs and the rowid (-1 for a column
+// of kAddedColumns that the table lacks)
 RunColumnsAt run_columns_of(const Statement& q) {
   // why: SQLite locks the connection for each column name; they are read once
   const std::vector<std::string> names = q.column_names();
   const auto find = [&](std::string_view name) {
     const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end() && is_added_column(name)) return -1;
     if (it == names.end()) {
       throw std::logic_error("SQL statement has no column " + std::string(name));
     }
@@ -739,9 +803,19 @@ const std::string& insert_run() {
 RunRow row_at(const Statement& q, const RunColumnsAt& at, const std::string& path) {
   RowReader in(q, path, "row " + std::to_string(q.integer(at.rowid)) + " of table runs");
   RunRow r;
-  r.sweep = in.text(at.sweep, "sweep");
-  r.point = static_cast<int>(in.integer(at.point, "point", 0, INT_MAX));
-  r.trial = static_cast<std::uint64_t>(in.integer(at.trial, "trial", 0, INT64_MAX));
+  std::size_t key = 0;
+  RunRow::key_fields(r, [&](std::string_view name, auto& value) {
+    using T = std::remove_cvref_t<decltype(value)>;
+    const int col = at.key[key++];
+    if (col < 0) return;  // a store of an older schema: robot 0
+    if constexpr (std::is_same_v<T, std::string>) {
+      value = in.text(col, name);
+    } else {
+      constexpr auto most = static_cast<std::int64_t>(
+          std::min<std::uint64_t>(std::numeric_limits<T>::max(), INT64_MAX));
+      value = static_cast<T>(in.integer(col, name, 0, most));
+    }
+  });
   in.name("run (" + key_text(r) + ")");
   r.config_hash = in.text(at.config_hash, "config_hash");
   RunResult& m = r.result;
@@ -751,10 +825,12 @@ RunRow row_at(const Statement& q, const RunColumnsAt& at, const std::string& pat
     in.bad(at.seed, "seed", "not a whole number from 0 to 18446744073709551615");
   }
   m.trial = r.trial;
+  m.agent = r.agent;
   std::size_t k = 0;
   RunResult::fields(m, [&](const ResultField& f, auto&& value) {
     using T = std::remove_cvref_t<decltype(value)>;
     const int col = at.fields[k++];
+    if (col < 0) return;  // a store of an older schema: NaN, as a nullable field of no value
     if constexpr (kDerivedField<decltype(value)>) {
       static_assert(std::is_same_v<T, bool>, "a derived field is a flag");
       if (in.integer(col, f.name, 0, 1) != (value ? 1 : 0)) {
@@ -768,7 +844,13 @@ RunRow row_at(const Statement& q, const RunColumnsAt& at, const std::string& pat
       }
       // why: a stored run has ended
       if (value == Outcome::kRunning) {
-        in.bad(col, f.name, "not one of success, wall, timeout, gave_up");
+        std::string names;
+        for (const std::string_view name : kOutcomeNames) {
+          if (name != outcome_name(Outcome::kRunning)) {
+            names += (names.empty() ? "" : ", ") + std::string(name);
+          }
+        }
+        in.bad(col, f.name, "not one of " + names);
       }
     } else if constexpr (std::is_floating_point_v<T>) {
       value = in.real(col, f.name, f.nullable);
@@ -779,11 +861,21 @@ RunRow row_at(const Statement& q, const RunColumnsAt& at, const std::string& pat
   return r;
 }
 
+// binds the members of a run's key to the parameters at `key` (in kRunKeyFields order)
+void bind_key(Statement& put, const std::array<int, kRunKeyFields.size()>& key, const RunRow& r) {
+  std::size_t k = 0;
+  RunRow::key_fields(r, [&](std::string_view, const auto& value) {
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+      put.bind(key[k++], std::string_view(value));
+    } else {
+      put.bind(key[k++], static_cast<std::int64_t>(value));
+    }
+  });
+}
+
 // binds a run to the parameters of insert_run(), found at `at`
 void bind_run(Statement& put, const RunColumnsAt& at, const RunRow& r) {
-  put.bind(at.sweep, r.sweep);
-  put.bind(at.point, static_cast<std::int64_t>(r.point));
-  put.bind(at.trial, static_cast<std::int64_t>(r.trial));
+  bind_key(put, at.key, r);
   put.bind(at.seed, std::to_string(r.result.seed));
   put.bind(at.config_hash, r.config_hash);
   std::size_t k = 0;
@@ -858,10 +950,11 @@ std::map<std::string, std::string> read_meta(sqlite3* db, const std::string& pat
     return meta[key];
   };
   const std::string& schema = need("schema");
-  if (schema != kSchemaVersion && schema != kSchema2 && schema != kLegacySchema) {
+  if (schema != kSchemaVersion && schema != kSchema3 && schema != kSchema2 &&
+      schema != kLegacySchema) {
     damaged(path, "its schema is '" + shown(schema) + "'; this plumetrace reads schema " +
-                      std::string(kSchemaVersion) + " (and " + std::string(kSchema2) + ", " +
-                      std::string(kLegacySchema) + ")");
+                      std::string(kSchemaVersion) + " (and " + std::string(kSchema3) + ", " +
+                      std::string(kSchema2) + ", " + std::string(kLegacySchema) + ")");
   }
   if (!nlohmann::json::accept(need("definition"))) {
     damaged(path, "its definition (meta key 'definition') is not JSON");
@@ -942,18 +1035,22 @@ StoreContents load(sqlite3* db, const std::string& path) {
     }
   }
 
-  // the runs, each against its point
+  // the runs, each against its point, in the order of their key (of the key columns a store of
+  // an older schema has: its runs are robot 0's)
   Checksum runs_sum;
   {
-    Statement q(db, (std::string(kSelectRuns) + " ORDER BY sweep, point, trial").c_str(), path);
+    const std::vector<std::string> held = table_columns(db, path, "runs");
+    std::string order;
+    for (const std::string_view name : kRunKeyFields) {
+      if (std::find(held.begin(), held.end(), name) == held.end()) continue;
+      order += (order.empty() ? " ORDER BY " : ", ") + std::string(name);
+    }
+    Statement q(db, (std::string(kSelectRuns) + order).c_str(), path);
     const RunColumnsAt at = run_columns_of(q);
     while (q.step()) {
       RunRow r = row_at(q, at, path);
-      if (!c.rows.empty()) {
-        const RunRow& last = c.rows.back();
-        if (std::tie(last.sweep, last.point, last.trial) >= std::tie(r.sweep, r.point, r.trial)) {
-          damaged(path, "it holds run (" + key_text(r) + ") twice or out of order");
-        }
+      if (!c.rows.empty() && RunRow::key_of(c.rows.back()) >= RunRow::key_of(r)) {
+        damaged(path, "it holds run (" + key_text(r) + ") twice or out of order");
       }
       const auto point = hash_of_point.find({r.sweep, r.point});
       if (point == hash_of_point.end()) {
@@ -964,7 +1061,7 @@ StoreContents load(sqlite3* db, const std::string& path) {
                           shown(r.config_hash) + "', but its point's is '" + shown(point->second) +
                           "'");
       }
-      runs_sum.add(hash_of(r));
+      runs_sum.add(hash_of(r, at));
       c.rows.push_back(std::move(r));
     }
   }
@@ -1001,13 +1098,38 @@ StoreContents load(sqlite3* db, const std::string& path) {
     c.info.runs[sweep] = runs;
     c.info.stored[sweep] = 0;
   }
-  for (const auto& r : c.rows) {
+  // a trial counts once, whatever its team's size (the rows are in key order: a team's together)
+  for (std::size_t i = 0; i < c.rows.size(); ++i) {
+    const RunRow& r = c.rows[i];
+    if (i > 0 && std::tie(r.sweep, r.point, r.trial) ==
+                     std::tie(c.rows[i - 1].sweep, c.rows[i - 1].point, c.rows[i - 1].trial)) {
+      continue;
+    }
     const auto it = c.info.runs.find(r.sweep);
     if (it != c.info.runs.end() && r.trial < static_cast<std::uint64_t>(it->second)) {
       ++c.info.stored[r.sweep];
     }
   }
   return c;
+}
+
+// makes table runs of a store of an older schema anew with this schema's columns, inside the
+// caller's transaction: the columns it lacks hold 0 where they may not be NULL (agent: each run
+// is a robot alone's), else NULL
+void add_missing_columns(sqlite3* db, const std::string& path) {
+  const std::vector<std::string> held = table_columns(db, path, "runs");
+  std::string into, from;
+  for (const auto& [name, decl] : run_columns()) {
+    const bool has = std::find(held.begin(), held.end(), name) != held.end();
+    const bool not_null = decl.find("NOT NULL") != std::string::npos;
+    if (!has && !not_null) continue;
+    into += (into.empty() ? "" : ", ") + name;
+    from += (from.empty() ? "" : ", ") + (has ? name : std::string("0"));
+  }
+  exec_sql(db, path,
+           "ALTER TABLE runs RENAME TO runs_of_older_schema;" + schema_sql() +
+               "INSERT INTO runs (" + into + ") SELECT " + from +
+               " FROM runs_of_older_schema; DROP TABLE runs_of_older_schema;");
 }
 
 // the checksums of what a store holds
@@ -1076,19 +1198,13 @@ class RunWriter {
   RunWriter(sqlite3* db, const std::string& path)
       : db_(db),
         path_(path),
-        held_(db,
-              (std::string(kSelectRuns) +
-               " WHERE sweep = :sweep AND point = :point AND trial = :trial")
-                  .c_str(),
-              path),
+        held_(db, held_sql().c_str(), path),
         put_(db, insert_run().c_str(), path),
         at_(columns(held_, put_)),
         sum_(stored_checksum(db, path, "check:runs")) {}
 
   Added add(const RunRow& r) {
-    held_.bind(at_.key[0], r.sweep);
-    held_.bind(at_.key[1], static_cast<std::int64_t>(r.point));
-    held_.bind(at_.key[2], static_cast<std::int64_t>(r.trial));
+    bind_key(held_, at_.key, r);
     const bool exists = held_.step();
     const bool same = exists && same_run(row_at(held_, at_.held, path_), r);
     held_.reset();
@@ -1103,19 +1219,34 @@ class RunWriter {
   void finish() { put_meta(db_, path_, "check:runs", sum_.text()); }
 
  private:
+  // the run of a key: every column where each member of the run key is a parameter
+  static const std::string& held_sql() {
+    static const std::string sql = [] {
+      std::string where;
+      for (const std::string_view name : kRunKeyFields) {
+        where +=
+            (where.empty() ? " WHERE " : " AND ") + std::string(name) + " = :" + std::string(name);
+      }
+      return std::string(kSelectRuns) + where;
+    }();
+    return sql;
+  }
   // where the statements take and give each column
   struct Columns {
-    RunColumnsAt held;       // the columns of held's rows
-    RunColumnsAt put;        // the parameters of put
-    std::array<int, 3> key;  // the parameters of held: sweep, point, trial
+    RunColumnsAt held;                            // the columns of held's rows
+    RunColumnsAt put;                             // the parameters of put
+    std::array<int, kRunKeyFields.size()> key{};  // the parameters of held, in kRunKeyFields order
   };
   // why: a statement's text fixes where its columns are, and these texts never change, so they
   // are found once per process (a batch of 10 runs spent 3% of its time on it)
   static const Columns& columns(const Statement& held, const Statement& put) {
-    static const Columns at{
-        run_columns_of(held),
-        run_parameters(put),
-        {held.parameter(":sweep"), held.parameter(":point"), held.parameter(":trial")}};
+    static const Columns at = [&] {
+      Columns c{run_columns_of(held), run_parameters(put), {}};
+      for (std::size_t k = 0; k < kRunKeyFields.size(); ++k) {
+        c.key[k] = held.parameter((":" + std::string(kRunKeyFields[k])).c_str());
+      }
+      return c;
+    }();
     return at;
   }
 
@@ -1281,9 +1412,8 @@ std::vector<RunRow> renumbered(const std::vector<RunRow>& rows,
       out.push_back(std::move(copy));
     }
   }
-  std::sort(out.begin(), out.end(), [](const RunRow& a, const RunRow& b) {
-    return std::tie(a.sweep, a.point, a.trial) < std::tie(b.sweep, b.point, b.trial);
-  });
+  std::sort(out.begin(), out.end(),
+            [](const RunRow& a, const RunRow& b) { return RunRow::key_of(a) < RunRow::key_of(b); });
   return out;
 }
 
@@ -1367,13 +1497,18 @@ void Store::open(std::string_view version, bool fresh) {
       if (layout == Layout::kPlumetrace && !fresh) {
         accept(meta("definition"), meta("version"), version, point_index(db_, path_),
                " (another process wrote it meanwhile)" + discard);
-        if (meta("schema") == kLegacySchema) {
-          // a store of schema 1, checked above: its checksums from now on
-          const auto [runs, points] = checksums_of(load(db_, path_));
+        const bool older_runs = table_columns(db_, path_, "runs") != schema_columns().at("runs");
+        if (meta("schema") == kLegacySchema || older_runs) {
+          // a store of schema 1 (no checksums) or one whose runs lack the agent: checked under
+          // the write lock, its runs table made anew with every column (agent 0: a robot alone;
+          // NULL for the result fields it lacks), and the checksums of what it holds now
+          const StoreContents held = load(db_, path_);
+          if (older_runs) add_missing_columns(db_, path_);
+          const auto [runs, points] = checksums_of(held);
           put_meta(db_, path_, "check:runs", runs.text());
           put_meta(db_, path_, "check:points", points.text());
         }
-        // a store of schema 1 or 2: its points are numbered in grid order, as schema 3 may
+        // a store of schema 1 to 3: its points are numbered in grid order, as schema 3 may
         // number them; it gains an epoch
         if (meta("schema") != kSchemaVersion) {
           put_meta(db_, path_, "schema", std::string(kSchemaVersion));
@@ -1386,12 +1521,12 @@ void Store::open(std::string_view version, bool fresh) {
         }
         return;
       }
+      // why: table runs is made anew, as a store of an older schema has other columns
       if (layout == Layout::kPlumetrace) {
-        exec("DELETE FROM runs; DELETE FROM points; DELETE FROM meta;");
+        exec("DELETE FROM points; DELETE FROM meta;");
         for (auto& s : campaign_) s.numbers.assign(s.numbers.size(), -1);
-      } else {
-        exec(schema_sql());
       }
+      exec("DROP TABLE IF EXISTS runs;" + schema_sql());
       epoch_ = new_epoch();
       for (const auto& [k, v] : {std::pair<std::string, std::string>{"definition", definition_},
                                  {"version", std::string(version)},
@@ -1580,20 +1715,29 @@ std::set<RunKey> Store::keys() const {
       if (s.numbers[i] >= 0) at[{s.name, s.numbers[i]}].push_back(static_cast<int>(i));
     }
   }
-  Statement q(db_, "SELECT sweep, point, trial FROM runs", path_);
-  const int sweep = q.column("sweep"), point = q.column("point"), trial = q.column("trial");
+  Statement q(db_, ("SELECT " + run_key_list() + " FROM runs").c_str(), path_);
   std::set<RunKey> keys;
   while (q.step()) {
-    const std::string name = q.text(sweep);
-    const int number = static_cast<int>(q.integer(point));
-    const auto t = static_cast<std::uint64_t>(q.integer(trial));
+    RunRow r;
+    int col = 0;
+    RunRow::key_fields(r, [&](std::string_view, auto& value) {
+      using T = std::remove_cvref_t<decltype(value)>;
+      if constexpr (std::is_same_v<T, std::string>) {
+        value = q.text(col++);
+      } else {
+        value = static_cast<T>(q.integer(col++));
+      }
+    });
     if (!bound_) {
-      keys.emplace(name, number, t);
+      keys.insert(run_key(r));
       continue;
     }
-    const auto it = at.find({name, number});
+    const auto it = at.find({r.sweep, r.point});
     if (it == at.end()) continue;
-    for (const int p : it->second) keys.emplace(name, p, t);
+    for (const int p : it->second) {
+      r.point = p;
+      keys.insert(run_key(r));
+    }
   }
   return keys;
 }
@@ -1712,7 +1856,7 @@ MergeReport Store::absorb(const std::vector<std::string>& parts,
       for (const RunRow& given : contents[k].rows) {
         RunRow r = given;
         r.point = number_in[k].at({r.sweep, r.point});
-        const auto [it, added] = origin.try_emplace({r.sweep, r.point, r.trial}, k);
+        const auto [it, added] = origin.try_emplace(run_key(r), k);
         if (!added) {
           if (overlaps++ == 0) {
             first_overlap = key_text(r);

@@ -249,6 +249,10 @@ std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const Ta
   return rows;
 }
 
+std::int64_t runs_of(const std::vector<RunRow>& rows) {
+  return std::count_if(rows.begin(), rows.end(), [](const RunRow& r) { return r.agent == 0; });
+}
+
 GroupPool::GroupPool(const std::vector<ExpandedSweep>& sweeps, int threads,
                      ControllerFactory factory, const std::atomic<bool>* stop)
     : sweeps_(sweeps), factory_(std::move(factory)), external_stop_(stop) {
@@ -385,7 +389,7 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
     GroupPool::Batch batch = pool.take(options.progress_interval);
     if (!batch.rows.empty()) {
       sink(batch.rows);
-      result.computed += static_cast<std::int64_t>(batch.rows.size());
+      result.computed += runs_of(batch.rows);
     }
     if (options.on_progress) {
       options.on_progress({result.computed, static_cast<std::int64_t>(tasks.size()), seconds()});

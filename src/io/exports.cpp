@@ -84,6 +84,7 @@ std::string summary_table(const std::vector<ExpandedSweep>& sweeps, const std::v
 void write_exports(const std::string& out, const std::vector<ExpandedSweep>& sweeps,
                    const std::vector<RunRow>& rows, int runs_override) {
   write_runs_csv(out + "/runs.csv", sweeps, rows);
+  write_teams_csv(out + "/teams.csv", sweeps, rows);
   write_summary_csv(out + "/summary.csv", sweeps, rows, runs_override);
   write_results_json(out + "/results.json", sweeps, rows, runs_override);
 }

@@ -29,6 +29,7 @@ json result_json(const RunResult& r, const RunInfo& info) {
   });
   out["seed"] = info.seed;
   out["trial"] = info.trial;
+  out["agent"] = info.agent;
   out["version"] = std::string(version());
   return out;
 }
@@ -111,6 +112,18 @@ json plume_stats_json(const PlumeStats& st) {
             {"distances", lengths_json(s.distances)},
             {"turns_to_odor", lengths_json(s.turns_to_odor)},
             {"loss_x", lengths_json(s.loss_x)}}}};
+}
+
+json team_stats_json(const TeamStats& t) {
+  return {{"teams", t.teams},
+          {"robots", t.robots},
+          {"successes", t.successes},
+          {"success_rate", number_or_null(t.success_rate)},
+          {"success_lo", number_or_null(t.success_ci.lo)},
+          {"success_hi", number_or_null(t.success_ci.hi)},
+          {"mean_first_arrival", number_or_null(t.mean_first_arrival)},
+          {"mean_arrivals", number_or_null(t.mean_arrivals)},
+          {"mean_d_t_sum", number_or_null(t.mean_d_t_sum)}};
 }
 
 json stats_json(const PointStats& p) {

@@ -16,6 +16,7 @@ using detail::csv_text;
 using detail::number_or_null;
 using detail::result_json;
 using detail::stats_json;
+using detail::team_stats_json;
 using detail::value_to_json;
 using nlohmann::json;
 
@@ -85,10 +86,17 @@ const ExpandedSweep* find_sweep(const std::vector<ExpandedSweep>& sweeps, const 
   return nullptr;
 }
 
-// the first columns' names: sweep, point, then one per axis key
+// the names of the axis columns, each after a comma
+std::string axis_names(const std::vector<std::string>& keys) {
+  std::string names;
+  for (const auto& k : keys) names += ',' + csv_text(k);
+  return names;
+}
+
+// the first columns' names of a table of points: sweep, point, then one per axis key
 std::string axis_header(const std::vector<std::string>& keys) {
   std::string header = "sweep,point";
-  for (const auto& k : keys) header += ',' + csv_text(k);
+  header += axis_names(keys);
   return header;
 }
 
@@ -115,6 +123,42 @@ std::string csv_number(double v) {
   return buf;
 }
 
+// the run key's columns (RunRow::key_fields) with the point's axis columns after `point`:
+// their names, or a row's cells; `skip` leaves out a key member
+template <class Cell>
+std::string key_columns(const RunRow& r, std::string_view skip, Cell&& cell) {
+  std::string text;
+  RunRow::key_fields(r, [&](std::string_view name, const auto& value) {
+    if (name == skip) return;
+    if (!text.empty()) text += ',';
+    text += cell(name, value);
+  });
+  return text;
+}
+
+// the header of the run key's columns, the axis keys after `point`
+std::string key_header(const std::vector<std::string>& keys, std::string_view skip) {
+  return key_columns(RunRow{}, skip, [&](std::string_view name, const auto&) {
+    std::string column(name);
+    if (name == "point") column += axis_names(keys);
+    return column;
+  });
+}
+
+// a row's cells of the run key's columns, its point's axis values after `point`
+std::string key_cells(const RunRow& r, const ExpandedSweep& sweep,
+                      const std::vector<std::string>& keys, std::string_view skip) {
+  return key_columns(r, skip, [&](std::string_view name, const auto& value) {
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(value)>, std::string>) {
+      return csv_text(value);
+    } else {
+      std::string cell = std::to_string(value);
+      if (name == "point") cell += axis_cells(sweep, r.point, keys);
+      return cell;
+    }
+  });
+}
+
 }  // namespace
 
 void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
@@ -122,14 +166,13 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
   const auto keys = axis_keys(sweeps);
   OutputFile file(path);
   auto& out = file.stream();
-  out << axis_header(keys) << ",trial,seed,config_hash";
+  out << key_header(keys, "") << ",seed,config_hash";
   for (const ResultField& f : kResultFields) out << ',' << f.name;
   out << '\n';
   for (const auto& r : rows) {
     const ExpandedSweep* sweep = find_sweep(sweeps, r.sweep);
     if (!sweep || r.point >= static_cast<int>(sweep->points.size())) continue;
-    out << csv_text(r.sweep) << ',' << r.point << axis_cells(*sweep, r.point, keys) << ','
-        << r.trial << ',' << r.result.seed << ',' << csv_text(r.config_hash);
+    out << key_cells(r, *sweep, keys, "") << ',' << r.result.seed << ',' << csv_text(r.config_hash);
     RunResult::fields(r.result, [&](const ResultField&, const auto& value) {
       using T = std::remove_cvref_t<decltype(value)>;
       out << ',';
@@ -138,6 +181,36 @@ void write_runs_csv(const std::string& path, const std::vector<ExpandedSweep>& s
       } else if constexpr (std::is_same_v<T, bool>) {
         out << (value ? 1 : 0);
       } else if constexpr (std::is_floating_point_v<T>) {
+        out << csv_number(value);
+      } else {
+        out << value;
+      }
+    });
+    out << '\n';
+  }
+  file.commit();
+}
+
+void write_teams_csv(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
+                     const std::vector<RunRow>& rows) {
+  const auto keys = axis_keys(sweeps);
+  OutputFile file(path);
+  auto& out = file.stream();
+  out << key_header(keys, "agent");
+  TeamOutcome::fields(TeamOutcome{},
+                      [&](const ResultField& f, const auto&) { out << ',' << f.name; });
+  out << '\n';
+  for (const TeamOutcome& t : team_outcomes(rows)) {
+    const ExpandedSweep* sweep = find_sweep(sweeps, t.sweep);
+    if (!sweep || t.point >= static_cast<int>(sweep->points.size())) continue;
+    RunRow run;
+    run.sweep = t.sweep;
+    run.point = t.point;
+    run.trial = t.trial;
+    out << key_cells(run, *sweep, keys, "agent");
+    TeamOutcome::fields(t, [&](const ResultField&, const auto& value) {
+      out << ',';
+      if constexpr (std::is_floating_point_v<std::remove_cvref_t<decltype(value)>>) {
         out << csv_number(value);
       } else {
         out << value;
@@ -178,6 +251,7 @@ void write_summary_csv(const std::string& path, const std::vector<ExpandedSweep>
 
 void write_results_json(const std::string& path, const std::vector<ExpandedSweep>& sweeps,
                         const std::vector<RunRow>& rows, int runs_override) {
+  const std::vector<TeamOutcome> teams = team_outcomes(rows);
   json doc_sweeps = json::array();
   for (const auto& sweep : sweeps) {
     const int runs = runs_per_point(sweep, runs_override);
@@ -197,13 +271,22 @@ void write_results_json(const std::string& path, const std::vector<ExpandedSweep
       for (const auto& v : p.values) values.push_back(value_to_json(v));
       json run_list = json::array();
       for (const auto& r : results) {
-        run_list.push_back(result_json(
-            r, {std::string(algorithm_name(p.scenario.controller.algorithm)), r.seed, r.trial}));
+        run_list.push_back(
+            result_json(r, {std::string(algorithm_name(p.scenario.controller.algorithm)), r.seed,
+                            r.trial, r.agent}));
+      }
+      std::vector<TeamOutcome> point_teams;
+      for (const TeamOutcome& t : teams) {
+        if (t.sweep == sweep.def.name && t.point == p.index &&
+            t.trial < static_cast<std::uint64_t>(runs)) {
+          point_teams.push_back(t);
+        }
       }
       points.push_back({{"index", p.index},
                         {"values", values},
                         {"config_hash", p.config_hash},
                         {"stats", stats_json(summarize(results))},
+                        {"team", team_stats_json(summarize_teams(point_teams))},
                         {"runs", run_list}});
     }
     doc_sweeps.push_back({{"name", sweep.def.name},

@@ -684,6 +684,7 @@ RecordedRun read_trace(const std::string& path) {
                    : 0,
                "");
     run.result = run.trace.agents.front().result;
+    run.info.agent = run.result.agent;
     if (format >= 3) {
       const json& mates = doc.at("teammates");
       if (!mates.is_array() || mates.size() >= static_cast<std::size_t>(kMaxTeam)) {

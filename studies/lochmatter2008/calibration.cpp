@@ -54,11 +54,10 @@ CalibrationResult evaluate_sets(const CalibrationOptions& options) {
   result.interrupted = static_cast<std::size_t>(ran.computed) < tasks.size();
   if (result.interrupted) return result;
 
-  // why: a store hands its rows ordered by (sweep, point, trial); the same order makes the
-  // overhead sums, hence the statistics, bit-identical to a store-based sweep's
-  std::sort(rows.begin(), rows.end(), [](const RunRow& a, const RunRow& b) {
-    return std::tie(a.sweep, a.point, a.trial) < std::tie(b.sweep, b.point, b.trial);
-  });
+  // why: a store hands its rows ordered by their run key; the same order makes the overhead
+  // sums, hence the statistics, bit-identical to a store-based sweep's
+  std::sort(rows.begin(), rows.end(),
+            [](const RunRow& a, const RunRow& b) { return RunRow::key_of(a) < RunRow::key_of(b); });
   for (const ExpandedSweep& sweep : sweeps) {
     result.sets[sweep.def.name] = set_stats(sweep, rows, sweep.def.runs);
   }

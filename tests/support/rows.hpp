@@ -34,11 +34,13 @@ inline void expect_same_rows(const std::vector<RunRow>& a, const std::vector<Run
     EXPECT_EQ(a[i].sweep, b[i].sweep) << i;
     EXPECT_EQ(a[i].point, b[i].point) << i;
     EXPECT_EQ(a[i].trial, b[i].trial) << i;
+    EXPECT_EQ(a[i].agent, b[i].agent) << i;
     EXPECT_EQ(a[i].config_hash, b[i].config_hash) << i;
     const RunResult &x = a[i].result, &y = b[i].result;
     EXPECT_EQ(field_bits(x), field_bits(y)) << i;
     EXPECT_EQ(x.seed, y.seed) << i;
     EXPECT_EQ(x.trial, y.trial) << i;
+    EXPECT_EQ(x.agent, y.agent) << i;
   }
 }
 

@@ -92,9 +92,12 @@ TaskRunner coordinator(Ranks& ranks, JobReport* report);
 bool serve_blocks(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps,
                   const CampaignOptions& options);
 
-/// Rows as bytes for another rank of the same build: doubles travel as their bits.
+/// Rows as bytes for another rank of the same build: the run key (RunRow::key_fields), the
+/// config hash, seed, the result's trial and agent and every stored result field; doubles
+/// travel as their bits.
 std::vector<char> encode_rows(const std::vector<RunRow>& rows);
-/// The rows of encode_rows; throws IoError on a malformed message.
+/// The rows of encode_rows; throws IoError on a malformed message, an unknown outcome or an
+/// agent outside a team (0 to kMaxTeam - 1).
 std::vector<RunRow> decode_rows(const std::vector<char>& bytes);
 /// Task groups as bytes for another rank of the same build.
 std::vector<char> encode_groups(const std::vector<TaskGroup>& groups);

@@ -36,8 +36,9 @@ std::vector<std::vector<int>> plume_indices(const std::vector<ExpandedSweep>& sw
 /// the sweep file (or the sweeps) and the count when it is above kMaxCampaignRuns.
 std::int64_t check_campaign(const std::vector<ExpandedSweep>& sweeps, int runs_override);
 
-/// The (sweep, point, trial) runs of a campaign (of one shard of it) that are not yet in
-/// `done`, in campaign order; checks the campaign first (check_campaign).
+/// The (sweep, point, trial) runs of a campaign (of one shard of it) that `done` does not hold
+/// with every robot of the point's team (agents 0 to team.count - 1), in campaign order; checks
+/// the campaign first (check_campaign).
 std::vector<RunTask> missing_runs(const std::vector<ExpandedSweep>& sweeps,
                                   const std::set<RunKey>& done, int runs_override,
                                   const Shard& shard = {});
@@ -51,8 +52,9 @@ CampaignResult run_campaign(const std::vector<ExpandedSweep>& sweeps, Store& sto
                             int runs_override, const CampaignOptions& options,
                             const Shard& shard = {}, const TaskRunner& runner = {});
 
-/// The stored runs of one sweep point, trials 0..runs-1, in trial order (runs beyond the
-/// current runs per point are left out, so a store run with more trials can be reused).
+/// The stored results of one sweep point, trials 0..runs-1, every robot of each trial's team, in
+/// the order of `rows` (runs beyond the current runs per point are left out, so a store run with
+/// more trials can be reused).
 std::vector<RunResult> point_runs(const std::vector<RunRow>& rows, const std::string& sweep,
                                   int point, int runs);
 
@@ -61,12 +63,13 @@ struct IncompletePoint {
   std::string sweep;        ///< sweep name
   int point = 0;            ///< point index in the sweep
   std::string values;       ///< its axis values, "key = value, ..."
-  std::int64_t stored = 0;  ///< runs stored (trials 0..runs-1)
+  std::int64_t stored = 0;  ///< runs stored (trials 0..runs-1 with every robot of the team)
   int runs = 0;             ///< runs per point asked
 };
 
 /// The points of a campaign with fewer runs in `rows` (numbered by the campaign's points) than
-/// their sweep's runs per point, in campaign order.
+/// their sweep's runs per point, in campaign order; a run counts when `rows` hold every robot of
+/// its team.
 std::vector<IncompletePoint> incomplete_points(const std::vector<ExpandedSweep>& sweeps,
                                                const std::vector<RunRow>& rows, int runs_override);
 

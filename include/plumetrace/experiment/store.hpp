@@ -29,9 +29,6 @@ class StoreIoError : public StoreError {
   using StoreError::StoreError;
 };
 
-/// Identifies a run within a campaign.
-using RunKey = std::tuple<std::string, int, std::uint64_t>;
-
 /// What a store says about itself, besides its runs.
 struct StoreInfo {
   std::string definition;                      ///< campaign definition (JSON)
@@ -39,7 +36,9 @@ struct StoreInfo {
   std::string shard;                           ///< "i/n" when it holds one shard, else ""
   std::map<std::string, int> runs;             ///< runs per point asked of each sweep
   std::map<std::string, std::int64_t> points;  ///< points of each sweep
-  std::map<std::string, std::int64_t> stored;  ///< stored runs of each sweep (trial < runs)
+  /// Stored runs of each sweep: its (point, trial) with trial < runs that have rows, a trial
+  /// counting once whatever its team's size (a team's rows are stored together).
+  std::map<std::string, std::int64_t> stored;
   /// The --set each sweep ran with (ExpandedSweep::sets), where the store recorded them.
   std::map<std::string, std::vector<std::string>> sets;
 };
@@ -59,7 +58,7 @@ struct StoredPoint {
 struct StoreContents {
   StoreInfo info;                   ///< what it says about itself
   std::vector<StoredPoint> points;  ///< ordered by (sweep, point)
-  std::vector<RunRow> rows;         ///< ordered by (sweep, point, trial)
+  std::vector<RunRow> rows;         ///< ordered by (sweep, point, trial, agent)
 };
 
 /// Opens an existing store read-only (a store the user cannot write is read alike) and reads
@@ -74,19 +73,20 @@ StoreInfo read_store_info(const std::string& path);
 struct SweepGap {
   std::string sweep;          ///< sweep name
   std::int64_t expected = 0;  ///< points x runs per point
-  std::int64_t present = 0;   ///< stored runs with trial < runs per point
+  std::int64_t present = 0;   ///< stored runs (point, trial) with trial < runs per point
 };
 
 /// What merge_stores did.
 struct MergeReport {
-  std::int64_t added = 0;      ///< runs copied into the store
-  std::int64_t already = 0;    ///< runs the store already held, identical, so not copied
-  std::int64_t total = 0;      ///< runs in the store afterwards
+  std::int64_t added = 0;      ///< rows (one per robot of a run) copied into the store
+  std::int64_t already = 0;    ///< rows the store already held, identical, so not copied
+  std::int64_t total = 0;      ///< rows (one per robot of a run) in the store afterwards
   std::vector<SweepGap> gaps;  ///< sweeps with runs missing
   std::vector<std::string> missing_shards;  ///< "i/n" shards no part holds (all parts of n)
 };
 
-/// The embedded SQLite results store: one row per run, plus each sweep's definition, the
+/// The embedded SQLite results store: one row per robot of a run, keyed by the run key
+/// (kRunKeyFields: sweep, point, trial, agent), plus each sweep's definition, the
 /// program version and a checksum of the runs and of the points. A point is identified by its
 /// values: the store numbers the points of a sweep itself, in the order they were first stored,
 /// and finds a campaign's points by the scenario they resolve to, so a sweep given more values
@@ -123,11 +123,11 @@ class Store {
   /// points put_points has recorded. A run the store already holds (another process computed
   /// it) is skipped when identical and refused otherwise, with StoreError.
   void insert(const std::vector<RunRow>& rows);
-  /// Keys of the stored runs of the campaign's points, numbered by them (of every stored run,
-  /// for a store without a campaign).
+  /// Keys (sweep, point, trial, agent) of the stored rows of the campaign's points, numbered by
+  /// them (of every stored row, for a store without a campaign).
   std::set<RunKey> keys() const;
   /// The stored runs of the campaign's points numbered by them (every stored run, for a store
-  /// without a campaign), ordered by (sweep, point, trial), checked as read_store does.
+  /// without a campaign), ordered by (sweep, point, trial, agent), checked as read_store does.
   std::vector<RunRow> rows() const;
   /// The stored definition (JSON): each sweep's as it was last opened with the store.
   std::string definition() const;
@@ -170,7 +170,8 @@ class Store {
 };
 
 /// The runs of a campaign that the existing store at `path` holds (read-only, checked as
-/// read_store does), numbered by the campaign's points, ordered by (sweep, point, trial). Throws
+/// read_store does), numbered by the campaign's points, ordered by (sweep, point, trial,
+/// agent). Throws
 /// StoreError naming the file when a sweep of the campaign is not in the store, has another
 /// master seed there, or has a stored point of the same values whose scenario resolved otherwise.
 std::vector<RunRow> read_campaign_rows(const std::string& path,

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <atomic>
+#include <concepts>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -9,7 +11,10 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "plumetrace/sim/scenario.hpp"
@@ -121,7 +126,11 @@ std::string plume_key(const Scenario& scenario);
 std::vector<RunResult> run_shared(const std::vector<const Scenario*>& scenarios, std::uint64_t seed,
                                   std::uint64_t trial, const ControllerFactory& factory = {});
 
-/// One run of a campaign and its result.
+/// The names of the run key's columns, in order: what identifies a row of a campaign in every
+/// format (RunRow::key_fields gives their values).
+inline constexpr std::array<std::string_view, 4> kRunKeyFields{"sweep", "point", "trial", "agent"};
+
+/// One robot's run of a campaign and its result.
 struct RunRow {
   std::string sweep;        ///< sweep name
   int point = 0;            ///< point index in the sweep
@@ -129,7 +138,41 @@ struct RunRow {
   int agent = 0;            ///< the robot's index in its team (0 for a robot alone)
   std::string config_hash;  ///< hash of the point's resolved scenario (scenario_hash)
   RunResult result;         ///< metrics (with seed, trial and agent)
+
+  /// The run key's members, in kRunKeyFields order, as a tuple of references: orders and
+  /// compares rows (`RunRow::key_of(a) < RunRow::key_of(b)`).
+  template <class Row>
+  requires std::same_as<std::remove_const_t<Row>, RunRow>
+  static auto key_of(Row& r) { return std::tie(r.sweep, r.point, r.trial, r.agent); }
+
+  /// The one list of the run key, in column order: calls `v(name, value)` for sweep, point,
+  /// trial and agent. The store's runs table (its columns, primary key and order), runs.csv,
+  /// teams.csv, the row message and the Python columns take their key columns from it.
+  template <class Row, class Visitor>
+  requires std::same_as<std::remove_cvref_t<Row>, RunRow>
+  static void key_fields(Row&& r, Visitor&& v) {
+    std::apply(
+        [&](auto&... member) {
+          std::size_t k = 0;
+          (v(kRunKeyFields[k++], member), ...);
+        },
+        key_of(r));
+  }
 };
+
+static_assert(std::tuple_size_v<decltype(RunRow::key_of(std::declval<const RunRow&>()))> ==
+                  kRunKeyFields.size(),
+              "every member of the run key has a name");
+
+/// Identifies a row of a campaign: the values of its run key (RunRow::key_of).
+using RunKey = std::tuple<std::string, int, std::uint64_t, int>;
+
+/// The run key of a row.
+inline RunKey run_key(const RunRow& r) { return RunRow::key_of(r); }
+
+/// The runs (tasks) whose rows these are: a task yields one row per robot of its team, robot 0
+/// among them, so its rows count once however many robots it has.
+std::int64_t runs_of(const std::vector<RunRow>& rows);
 
 /// Progress of a campaign.
 struct Progress {
@@ -161,7 +204,8 @@ struct CampaignOptions {
   ControllerFactory make_controller;
 };
 
-/// What a campaign call did.
+/// What a campaign call did, in runs: a run is one trial of a point, every robot of its team
+/// (one row per robot).
 struct CampaignResult {
   std::int64_t total = 0;     ///< runs the campaign defines
   std::int64_t skipped = 0;   ///< already in the store

@@ -9,8 +9,10 @@
 
 namespace plumetrace {
 
-/// Writes a campaign's exports into the folder `out` (which must exist): runs.csv,
-/// summary.csv and results.json (results_io.hpp). Throws IoError naming the file.
+/// Writes a campaign's exports into the folder `out` (which must exist): runs.csv, teams.csv
+/// (always, so that no teams.csv of an earlier export is left beside other runs; a robot alone
+/// is a team of one), summary.csv and results.json (results_io.hpp). Throws IoError naming the
+/// file.
 void write_exports(const std::string& out, const std::vector<ExpandedSweep>& sweeps,
                    const std::vector<RunRow>& rows, int runs_override);
 

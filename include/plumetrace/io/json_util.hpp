@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "plumetrace/experiment/stats.hpp"
+#include "plumetrace/experiment/teams.hpp"
 #include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/world.hpp"
 
@@ -26,6 +27,10 @@ json result_json(const RunResult& r, const RunInfo& info);
 
 /// The statistics of one point (keys documented in docs/report.md).
 json stats_json(const PointStats& p);
+
+/// The statistics of one point's teams (results.json's `team`; keys documented in
+/// docs/experiments.md, "Teams").
+json team_stats_json(const TeamStats& t);
 
 /// A plume's statistics (keys documented in docs/plume-statistics.md).
 json plume_stats_json(const PlumeStats& st);

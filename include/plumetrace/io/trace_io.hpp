@@ -31,7 +31,7 @@ void round_as_stored(Trace& trace);
 struct RecordedRun {
   Scenario scenario;    ///< the fully resolved scenario of the run
   RunResult result;     ///< its metrics (robot 0's: the run's)
-  RunInfo info;         ///< algorithm, seed and trial
+  RunInfo info;         ///< algorithm, seed, trial and agent (of `result`'s robot)
   std::string version;  ///< the plumetrace version that wrote the trace
   Trace trace;          ///< every robot's steps, filament and controller snapshots
 };

@@ -115,11 +115,12 @@ inline constexpr auto kResultFields = [] {
   return fields;
 }();
 
-/// Identifies a run: what the trace and the JSON output carry besides the result.
+/// Identifies a robot's run: what the trace and the JSON output carry besides the result.
 struct RunInfo {
   std::string algorithm;    ///< algorithm name
   std::uint64_t seed = 0;   ///< master seed
   std::uint64_t trial = 0;  ///< trial index
+  int agent = 0;            ///< the robot's index in its team (0 for a robot alone)
 };
 
 }  // namespace plumetrace

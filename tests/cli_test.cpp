@@ -163,7 +163,7 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set team.count=2 --set team.spacing=0.1", "team.spacing"},
       {"run --set team.count=30", "team.count"},
       {"run --set start.region=disc --set start.cy=9", "start.cx, start.cy, start.radius"},
-      {"run --set start.region=rectangle --set team.count=200", "team.count"},
+      {"run --set start.region=rectangle --set team.count=1000", "team.count"},
       {"run --set team.range=-1", "team.range"},
       {"run --set team.delay=-1", "team.delay"},
       {"run --set odor.model=mox", "odor.model"},

@@ -62,7 +62,8 @@ BENCHMARK(BM_PlumeStep)->Arg(0)->Arg(1);
 // edges and the inside's substeps
 void BM_MeanderWindStep(benchmark::State& state) {
   const Scenario s = bench_scenario(1);
-  MeanderWind wind(s.wind, wind_region(s.arena), Rng(derive_seed(1, 0, Stream::kWind)));
+  MeanderWind wind(s.wind.get<MeanderParams>(), s.wind.velocity, wind_region(s.arena),
+                   Rng(derive_seed(1, 0, Stream::kWind)));
   for (auto _ : state) wind.step(s.sim.dt);
   state.counters["substeps"] = wind.substeps();
 }

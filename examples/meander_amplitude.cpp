@@ -15,6 +15,7 @@
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/env/environment.hpp"
+#include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/sim/world.hpp"
 
@@ -108,9 +109,9 @@ int main(int argc, char** argv) {
     const double spread = sd_of(trial_sd, mean_of(trial_sd));
     std::sort(counts.begin(), counts.end());
     if (s.wind.model == pt::WindModel::kMeander) {
+      const auto& m = s.wind.get<pt::MeanderParams>();
       std::printf("scenario %s: meandering wind, gain %g, damping %g, bandwidth %g\n",
-                  o.scenario.c_str(), s.wind.meander.gain, s.wind.meander.damping,
-                  s.wind.meander.bandwidth);
+                  o.scenario.c_str(), m.gain, m.damping, m.bandwidth);
     } else {
       std::printf("scenario %s: constant wind\n", o.scenario.c_str());
     }

@@ -6,17 +6,20 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <climits>
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -179,6 +182,288 @@ py::list snapshot_list(const pt::Trace& trace) {
   return out;
 }
 
+// What a Python controller may read (its `reads`, plumetrace.controllers.READS): the names of
+// the Reads flags of agent/measurement.hpp
+constexpr std::array<std::pair<std::string_view, unsigned>, 3> kReadNames{{
+    {"binary", pt::kReadsBinary},
+    {"concentration", pt::kReadsConcentration},
+    {"messages", pt::kReadsMessages},
+}};
+
+// the names of kReadNames, for messages: "binary, concentration, messages"
+std::string read_names() {
+  std::string names;
+  for (const auto& [name, flag] : kReadNames) {
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
+  return names;
+}
+
+// The Reads flags of `value`, what a controller (`who`) says it reads: None, a name or an
+// iterable of names. ValueError naming every unknown name, TypeError for anything else.
+unsigned reads_of(const py::handle& value, const std::string& who) {
+  if (value.is_none()) return pt::kReadsBinary;
+  const std::string what = who + ".reads";
+  std::vector<py::object> items;
+  if (py::isinstance<py::str>(value)) {
+    items.push_back(py::reinterpret_borrow<py::object>(value));
+  } else if (py::isinstance<py::iterable>(value) && !py::isinstance<py::bytes>(value)) {
+    for (const py::handle item : value) items.push_back(py::reinterpret_borrow<py::object>(item));
+  } else {
+    throw py::type_error(what + " must be a name or a tuple of names (" + read_names() + "), got " +
+                         type_name(value));
+  }
+  unsigned flags = pt::kReadsBinary;
+  std::string unknown;
+  for (const py::object& item : items) {
+    if (!py::isinstance<py::str>(item)) {
+      throw py::type_error(what + ": " + py::repr(item).cast<std::string>() + " (" +
+                           type_name(item) + ") is not a name (" + read_names() + ")");
+    }
+    const std::string name = text_of(item, what);
+    const auto at = std::find_if(kReadNames.begin(), kReadNames.end(),
+                                 [&](const auto& known) { return known.first == name; });
+    if (at == kReadNames.end()) {
+      unknown += (unknown.empty() ? "" : ", ") + py::repr(item).cast<std::string>();
+    } else {
+      flags |= at->second;
+    }
+  }
+  if (!unknown.empty()) {
+    throw py::value_error(what + ": unknown " + unknown + " (a controller reads " + read_names() +
+                          ")");
+  }
+  return flags;
+}
+
+// a message's numbers as a tuple
+py::tuple message_tuple(const std::array<double, pt::kMessageSize>& data) {
+  py::tuple t(data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) t[i] = data[i];
+  return t;
+}
+
+// An observation as Python holds it: the C++ one with its messages copied out of the agent.
+// why: Observation::messages views the agent's inbox, valid only during the step; a Python
+// controller may keep the observation after it, or past the run
+struct HeldObservation {
+  explicit HeldObservation(const pt::Observation& seen)
+      : obs(seen), messages(seen.messages.begin(), seen.messages.end()) {
+    obs.messages = {};
+  }
+  pt::Observation obs;
+  std::vector<pt::Message> messages;
+};
+
+// the finite numbers of a Python sequence (a list, tuple or array); `what` names it in the
+// TypeError or ValueError of anything else
+std::vector<double> finite_numbers(const py::handle& value, const std::string& what) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
+      !py::isinstance<py::iterable>(value)) {
+    throw py::type_error(what + " must be a sequence of numbers, got " + type_name(value));
+  }
+  std::vector<double> out;
+  for (const py::handle item : value) {
+    if (py::isinstance<py::bool_>(item) || py::isinstance<py::str>(item) ||
+        !(PyFloat_Check(item.ptr()) || PyIndex_Check(item.ptr()) ||
+          PyObject_HasAttrString(item.ptr(), "__float__"))) {
+      throw py::type_error(what + ": " + py::repr(item).cast<std::string>() + " (" +
+                           type_name(item) + ") is not a real number");
+    }
+    const double v = PyFloat_AsDouble(item.ptr());
+    if (v == -1.0 && PyErr_Occurred()) {
+      const bool overflow = PyErr_ExceptionMatches(PyExc_OverflowError) != 0;
+      PyErr_Clear();
+      if (!overflow) {
+        throw py::type_error(what + ": " + py::repr(item).cast<std::string>() + " (" +
+                             type_name(item) + ") is not a real number");
+      }
+      throw py::value_error(what + ": " + py::repr(item).cast<std::string>() +
+                            " is out of a float's range");
+    }
+    if (!std::isfinite(v)) {
+      throw py::value_error(what + ": " + py::repr(item).cast<std::string>() +
+                            " is not a finite number");
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+// `value` as a NumPy array of float64; ValueError naming `what` where NumPy cannot read it so
+// (ragged lists, text)
+py::object float_array(const py::handle& value, const std::string& what) {
+  try {
+    return py::module_::import("numpy").attr("asarray")(value, "float64");
+  } catch (const py::error_already_set& e) {
+    throw py::value_error(what + ": not an array of numbers (" + std::string(e.what()) + ")");
+  }
+}
+
+// ValueError naming `what` and the first key of `d` that is not one of `keys`
+void check_keys(const py::dict& d, std::initializer_list<const char*> keys,
+                const std::string& what) {
+  for (const auto& [key, item] : d) {
+    const bool known =
+        std::any_of(keys.begin(), keys.end(), [&](const char* k) { return key.equal(py::str(k)); });
+    if (!known) {
+      std::string names;
+      for (const char* k : keys) names += (names.empty() ? "" : ", ") + std::string(k);
+      throw py::value_error(what + ": unknown key " + py::repr(key).cast<std::string>() + " (" +
+                            names + ")");
+    }
+  }
+}
+
+// The snapshot of a controller's state from the dict its snapshot() returns (None: nothing to
+// show); every key optional: points (N x 2), weights (N), path (M x 2), grid {x0, y0, dx, dy,
+// values (ny x nx, rows by y; or flat, with nx and ny)}, estimate ((x, y) or None). Numbers
+// finite, at most kMaxSnapshotValues of them; TypeError or ValueError naming the key.
+pt::Snapshot snapshot_of(const py::handle& value, const std::string& who) {
+  pt::Snapshot s;
+  if (value.is_none()) return s;
+  const std::string what = who + ".snapshot()";
+  if (!py::isinstance<py::dict>(value)) {
+    const std::string got = type_name(value);
+    throw py::type_error(what + " must return a dict (points, weights, path, grid, estimate) " +
+                         "or None, got " + got);
+  }
+  const auto d = py::reinterpret_borrow<py::dict>(value);
+  check_keys(d, {"points", "weights", "path", "grid", "estimate"}, what);
+  const auto has = [&](const char* key) { return d.contains(key) && !d[key].is_none(); };
+  // a list of (x, y) points: any sequence of pairs, or an (N, 2) array
+  const auto xy = [&](const char* key) {
+    std::vector<pt::Vec2> points;
+    if (!has(key)) return points;
+    const std::string where = what + ": " + key;
+    const py::object a = float_array(d[key], where);
+    const auto shape = a.attr("shape").cast<std::vector<py::ssize_t>>();
+    const bool empty = a.attr("size").cast<py::ssize_t>() == 0;
+    if (!empty && (shape.size() != 2 || shape[1] != 2)) {
+      throw py::value_error(where + " must be (x, y) pairs (an N x 2 array), got shape " +
+                            py::repr(a.attr("shape")).cast<std::string>());
+    }
+    const std::vector<double> v = finite_numbers(a.attr("ravel")(), where);
+    for (std::size_t i = 0; i + 1 < v.size(); i += 2) points.push_back({v[i], v[i + 1]});
+    return points;
+  };
+  // numbers of any shape, in C order
+  const auto flat = [&](const py::handle& item, const std::string& where) {
+    return finite_numbers(float_array(item, where).attr("ravel")(), where);
+  };
+  s.points = xy("points");
+  s.path = xy("path");
+  if (has("weights")) s.weights = flat(d["weights"], what + ": weights");
+  if (!s.weights.empty() && s.weights.size() != s.points.size()) {
+    throw py::value_error(what + ": weights: " + std::to_string(s.weights.size()) +
+                          " weights for " + std::to_string(s.points.size()) +
+                          " points (one a point, or none)");
+  }
+  if (has("grid")) {
+    const std::string where = what + ": grid";
+    if (!py::isinstance<py::dict>(d["grid"])) {
+      throw py::type_error(where + " must be a dict (x0, y0, dx, dy, values; nx, ny), got " +
+                           type_name(d["grid"]));
+    }
+    const auto g = py::reinterpret_borrow<py::dict>(d["grid"]);
+    check_keys(g, {"x0", "y0", "dx", "dy", "nx", "ny", "values"}, where);
+    const auto number = [&](const char* key) {
+      if (!g.contains(key)) throw py::value_error(where + ": no " + key);
+      return finite_numbers(py::make_tuple(g[key]), where + "." + key).front();
+    };
+    s.x0 = number("x0");
+    s.y0 = number("y0");
+    s.dx = number("dx");
+    s.dy = number("dy");
+    if (!(s.dx > 0.0 && s.dy > 0.0)) throw py::value_error(where + ": dx and dy must be > 0");
+    if (!g.contains("values")) throw py::value_error(where + ": no values");
+    const py::object values = float_array(g["values"], where + ".values");
+    const auto shape = values.attr("shape").cast<std::vector<py::ssize_t>>();
+    // nx and ny: given, or the shape (ny, nx) of a 2-D values array
+    const auto count = [&](const char* key, std::size_t axis) -> long long {
+      if (g.contains(key)) {
+        const py::object n = g[key];
+        if (py::isinstance<py::bool_>(n) || !PyIndex_Check(n.ptr())) {
+          throw py::type_error(where + "." + key + " must be an int, got " + type_name(n));
+        }
+        return n.cast<long long>();
+      }
+      if (shape.size() != 2) {
+        throw py::value_error(where + ": no " + key + ", and values is not a 2-D (ny, nx) array");
+      }
+      return shape[axis];
+    };
+    const long long nx = count("nx", 1), ny = count("ny", 0);
+    const auto max = static_cast<long long>(pt::kMaxSnapshotValues);
+    if (nx < 1 || ny < 1 || nx > max || ny > max) {
+      throw py::value_error(where + ": nx and ny must be from 1 to " + std::to_string(max));
+    }
+    if (shape.size() == 2 && (shape[0] != ny || shape[1] != nx)) {
+      throw py::value_error(where + ": values of shape (" + std::to_string(shape[0]) + ", " +
+                            std::to_string(shape[1]) + ") for ny = " + std::to_string(ny) +
+                            ", nx = " + std::to_string(nx) + " (rows by y: (ny, nx))");
+    }
+    s.grid = flat(values, where + ".values");
+    if (static_cast<long long>(s.grid.size()) != nx * ny) {
+      throw py::value_error(where + ": " + std::to_string(s.grid.size()) +
+                            " values for nx * ny = " + std::to_string(nx * ny));
+    }
+    s.nx = static_cast<int>(nx);
+    s.ny = static_cast<int>(ny);
+  }
+  if (has("estimate")) {
+    const std::vector<double> e = flat(d["estimate"], what + ": estimate");
+    if (e.size() != 2) {
+      throw py::value_error(what + ": estimate must be (x, y) or None, got " +
+                            std::to_string(e.size()) + " numbers");
+    }
+    s.has_estimate = true;
+    s.estimate = {e[0], e[1]};
+  }
+  const std::size_t values =
+      2 * s.points.size() + s.weights.size() + 2 * s.path.size() + s.grid.size();
+  if (values > pt::kMaxSnapshotValues) {
+    throw py::value_error(what + ": " + std::to_string(values) + " numbers; a snapshot holds at " +
+                          "most " + std::to_string(pt::kMaxSnapshotValues) +
+                          " (points and path count 2 each)");
+  }
+  return s;
+}
+
+// a snapshot as the dict a controller's snapshot() returns, with NumPy arrays (every key: None
+// or empty where there is nothing)
+py::dict snapshot_dict(const pt::Snapshot& s) {
+  const auto pairs = [](const std::vector<pt::Vec2>& points) {
+    py::array_t<double> a({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
+    auto m = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      m(static_cast<py::ssize_t>(i), 0) = points[i].x;
+      m(static_cast<py::ssize_t>(i), 1) = points[i].y;
+    }
+    return a;
+  };
+  py::dict d;
+  d["points"] = pairs(s.points);
+  d["weights"] = to_array(s.weights);
+  d["path"] = pairs(s.path);
+  if (s.grid.empty()) {
+    d["grid"] = py::none();
+  } else {
+    py::dict g;
+    g["x0"] = s.x0;
+    g["y0"] = s.y0;
+    g["dx"] = s.dx;
+    g["dy"] = s.dy;
+    g["nx"] = s.nx;
+    g["ny"] = s.ny;
+    g["values"] = to_array(s.grid).attr("reshape")(s.ny, s.nx);
+    d["grid"] = g;
+  }
+  d["estimate"] = s.has_estimate ? py::object(py::make_tuple(s.estimate.x, s.estimate.y))
+                                 : py::object(py::none());
+  return d;
+}
+
 // The wind probe a Python controller's step() receives: it measures only during that call.
 // why: the C++ probe belongs to the run's World; a probe kept in Python and called after the run
 // would read freed memory, and one called from another run's thread would race with its World
@@ -202,13 +487,15 @@ class StepWindProbe {
 };
 
 // A controller written in Python: an object with step(observation, wind) -> Command and
-// optional state() -> str and losses() -> int. Calls take the GIL; `stop` (may be null), set
-// when the caller is interrupted, ends a run at its next step.
+// optional state() -> str, losses() -> int, reads (names, kReadNames) and snapshot() -> dict.
+// Calls take the GIL; `stop` (may be null), set when the caller is interrupted, ends a run at
+// its next step.
 class PyController : public pt::Controller {
  public:
   // constructed with the GIL held
   PyController(py::object impl, const std::atomic<bool>* stop)
       : impl_(std::move(impl)), stop_(stop) {
+    if (py::hasattr(impl_, "reads")) reads_ = reads_of(call_or_value("reads"), type_name(impl_));
     refresh();
   }
   ~PyController() override {
@@ -224,7 +511,7 @@ class PyController : public pt::Controller {
     {
       // invalidates the probe however step() ends (the GIL is still held then)
       const ProbeLease lease{probe.cast<StepWindProbe*>()};
-      command = impl_.attr("step")(obs, probe);
+      command = impl_.attr("step")(HeldObservation(obs), probe);
     }
     // why: cast<Command>() of a wrong type throws pybind's reference_cast_error, which the
     // dispatcher of run()/sweep() reports as a mismatch of their own arguments
@@ -236,6 +523,12 @@ class PyController : public pt::Controller {
   }
   std::string_view state() const override { return state_; }
   int losses() const override { return losses_; }
+  unsigned reads() const override { return reads_; }
+  pt::Snapshot snapshot() const override {
+    py::gil_scoped_acquire gil;
+    if (!py::hasattr(impl_, "snapshot")) return {};
+    return snapshot_of(impl_.attr("snapshot")(), type_name(impl_));
+  }
 
   /// Thrown by step() once the caller is interrupted; the caller raises the signal's error.
   struct Interrupted : std::runtime_error {
@@ -276,6 +569,7 @@ class PyController : public pt::Controller {
   const std::atomic<bool>* stop_;
   std::string state_ = "python";
   int losses_ = 0;
+  unsigned reads_ = pt::kReadsBinary;
 };
 
 // Runs in flight whose threads read the controller registry: a Python controller is registered
@@ -550,14 +844,19 @@ pt::ControllerFactory python_factory(py::object factory, const std::atomic<bool>
 }
 
 // The controller of a run decided from outside (a learning agent drives it through
-// World::observe and World::act); it is never asked to decide.
+// World::observe and World::act); it is never asked to decide, only what it reads.
 class ExternalController : public pt::Controller {
  public:
+  explicit ExternalController(unsigned reads) : reads_(reads) {}
   pt::Command step(const pt::Observation&, pt::WindProbe&) override {
     throw std::logic_error("an externally driven run steps through observe() and act()");
   }
   std::string_view state() const override { return "external"; }
   int losses() const override { return 0; }
+  unsigned reads() const override { return reads_; }
+
+ private:
+  unsigned reads_;
 };
 
 // one run, optionally traced, optionally with a Python controller
@@ -1270,14 +1569,19 @@ PYBIND11_MODULE(_core, m) {
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")
       .def(py::init([](const std::optional<std::string>& path, const py::list& overrides,
-                       std::uint64_t seed, std::uint64_t trial) {
+                       std::uint64_t seed, std::uint64_t trial, const py::object& reads) {
              const pt::Scenario scenario = scenario_of(path, overrides);
+             const unsigned flags = reads_of(reads, "World");
              py::gil_scoped_release release;
              return std::make_unique<pt::World>(scenario, seed, trial,
-                                                std::make_unique<ExternalController>());
+                                                std::make_unique<ExternalController>(flags));
            }),
-           py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"))
-      .def("observe", &pt::World::observe, "environment step and sensing")
+           py::arg("path"), py::arg("overrides"), py::arg("seed"), py::arg("trial"),
+           py::arg("reads") = py::none(),
+           "a run of agent 0 decided from outside, sensing what `reads` names (as a controller's)")
+      .def(
+          "observe", [](pt::World& w) { return HeldObservation(w.observe()); },
+          "environment step and sensing")
       .def("act", &pt::World::act, "decision, move and check")
       .def("measure_wind_body",
            [](pt::World& w) {
@@ -1316,11 +1620,55 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("x", &pt::Pose::x)
       .def_readonly("y", &pt::Pose::y)
       .def_readonly("heading", &pt::Pose::heading);
-  py::class_<pt::Observation>(m, "Observation")
-      .def_readonly("time", &pt::Observation::time)
-      .def_readonly("odor", &pt::Observation::odor)
-      .def_readonly("odometry", &pt::Observation::odometry)
-      .def_readonly("odometer", &pt::Observation::odometer);
+  py::class_<pt::Message>(m, "Message")
+      .def_readonly("from_", &pt::Message::from, "the sender's index in its team")
+      .def_readonly("sent", &pt::Message::sent, "the sender's time since release when sent (s)")
+      .def_property_readonly(
+          "data", [](const pt::Message& msg) { return message_tuple(msg.data); },
+          "the four numbers sent")
+      .def("__iter__",
+           [](const pt::Message& msg) {
+             return py::iter(py::make_tuple(msg.from, msg.sent, message_tuple(msg.data)));
+           })
+      .def("__repr__", [](const pt::Message& msg) {
+        return "Message(from_=" + std::to_string(msg.from) +
+               ", sent=" + py::repr(py::float_(msg.sent)).cast<std::string>() +
+               ", data=" + py::repr(message_tuple(msg.data)).cast<std::string>() + ")";
+      });
+  m.attr("READS") = [] {
+    py::list names;
+    for (const auto& [name, flag] : kReadNames) names.append(std::string(name));
+    return py::tuple(names);
+  }();
+  m.def(
+      "reads_flags",
+      [](const py::object& reads, const std::string& who) { return reads_of(reads, who); },
+      py::arg("reads"), py::arg("who"),
+      "the Reads flags of a controller's `reads`; ValueError naming unknown names");
+  py::class_<HeldObservation>(m, "Observation")
+      .def_property_readonly("time", [](const HeldObservation& o) { return o.obs.time; })
+      .def_property_readonly("odor", [](const HeldObservation& o) { return o.obs.odor; })
+      .def_property_readonly("odometry", [](const HeldObservation& o) { return o.obs.odometry; })
+      .def_property_readonly("odometer", [](const HeldObservation& o) { return o.obs.odometer; })
+      .def_property_readonly(
+          "concentration", [](const HeldObservation& o) { return o.obs.concentration; },
+          "the odor sensor's reading (NaN unless the controller reads 'concentration')")
+      .def_property_readonly(
+          "messages",
+          [](const HeldObservation& o) {
+            py::tuple out(o.messages.size());
+            for (std::size_t i = 0; i < o.messages.size(); ++i) out[i] = py::cast(o.messages[i]);
+            return out;
+          },
+          "teammates' messages delivered this step, by (sent, from_) (empty unless the "
+          "controller reads 'messages')");
+  m.def(
+      "controller_snapshot",
+      [](py::object controller) {
+        return snapshot_dict(PyController(std::move(controller), nullptr).snapshot());
+      },
+      py::arg("controller"),
+      "a Python controller's snapshot() as a run takes it (checked and converted), as a dict");
   py::class_<StepWindProbe>(m, "WindProbe").def("measure_wind_body", [](StepWindProbe& w) {
     const pt::Vec2 v = w.measure_wind_body();
     return py::make_tuple(v.x, v.y);
@@ -1355,9 +1703,39 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("curvature"))
       .def_static("abandon", &pt::Command::abandon)
+      .def_static(
+          "declare_source",
+          [finite](double x, double y) {
+            return pt::Command::declare_source(
+                {finite("Command.declare_source: x", x), finite("Command.declare_source: y", y)});
+          },
+          py::arg("x"), py::arg("y"))
+      .def(
+          "with_message",
+          [](const pt::Command& c, const py::handle& data) {
+            const std::vector<double> v = finite_numbers(data, "Command.with_message: data");
+            if (v.size() != pt::kMessageSize) {
+              throw py::value_error("Command.with_message: data holds " + std::to_string(v.size()) +
+                                    " numbers, not " + std::to_string(pt::kMessageSize));
+            }
+            std::array<double, pt::kMessageSize> message{};
+            std::copy(v.begin(), v.end(), message.begin());
+            return c.with_message(message);
+          },
+          py::arg("data"))
       .def_readonly("heading", &pt::Command::heading)
       .def_readonly("curvature", &pt::Command::curvature)
-      .def_readonly("give_up", &pt::Command::give_up);
+      .def_readonly("give_up", &pt::Command::give_up)
+      .def_readonly("declare", &pt::Command::declare)
+      .def_property_readonly("source",
+                             [](const pt::Command& c) {
+                               return c.declare ? py::object(py::make_tuple(c.source.x, c.source.y))
+                                                : py::object(py::none());
+                             })
+      .def_readonly("send", &pt::Command::send)
+      .def_property_readonly("message", [](const pt::Command& c) {
+        return c.send ? py::object(message_tuple(c.message)) : py::object(py::none());
+      });
   py::class_<pt::Rng>(m, "Rng")
       .def("uniform", &pt::Rng::uniform)
       .def("normal", py::overload_cast<>(&pt::Rng::normal))

@@ -111,6 +111,22 @@ TEST(Cli, ScenariosThatPutTheRobotOutsideOdorWarnNamingTheKeys) {
   EXPECT_EQ(swept.err.find("point 0"), std::string::npos) << swept.err;
 }
 
+// the meandering wind's keys of 0.4.0 still work until the next version, each said once on
+// stderr naming its new key; the resolved config has the new keys only (issue 24)
+TEST(Cli, OldMeanderKeysWarnNamingTheirNewKeys) {
+  const Output o =
+      cli("config --set wind.model=meander --set wind.meander_gain=0.3 --set wind.meander_gain=0.2 "
+          "--set meander.nx=9");
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.err,
+            "plumetrace: warning: --set: config key wind.meander_gain is deprecated: write "
+            "meander.gain (renamed after version 0.4.0; the old name is accepted until the next "
+            "version)\n");
+  EXPECT_NE(o.out.find("[meander]\ngain = 0.2  #"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("\nnx = 9  #"), std::string::npos) << o.out;
+  EXPECT_EQ(o.out.find("meander_"), std::string::npos) << o.out;
+}
+
 TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
   struct Case {
     std::string args, expect;
@@ -152,6 +168,8 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set team.delay=-1", "team.delay"},
       {"run --set odor.model=mox", "odor.model"},
       {"run --set supervisor.declaration_radius=0", "supervisor.declaration_radius"},
+      {"run --set meander.gain=11", "meander.gain: must be a number >= 0 and <= 10"},
+      {"run --set wind.meander_gain=11", "wind.meander_gain: must be a number >= 0 and <= 10"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);

@@ -64,12 +64,12 @@ std::string study_folder(const std::string& study) {
 // "internal error") are refused before any run, naming the keys
 TEST(CliTrust, MeanderKeysBeyondTheStabilityBoundAreRefusedBeforeAnyRun) {
   const std::string keys =
-      " --set wind.model=meander --set wind.meander_gain=10 --set wind.meander_bandwidth=100"
-      " --set wind.meander_damping=10";
-  expect_refused(cli("run --json" + keys), "wind.meander_gain, wind.meander_damping", "run");
+      " --set wind.model=meander --set meander.gain=10 --set meander.bandwidth=100"
+      " --set meander.damping=10";
+  expect_refused(cli("run --json" + keys), "meander.gain, meander.damping", "run");
   const std::string store = testing::temp_path("g1", ".sqlite");
   expect_refused(cli("sweep " + kTwoPlumes + keys + " --store " + store + " --out " + store + ".o"),
-                 "wind.meander_bandwidth", "sweep");
+                 "meander.bandwidth", "sweep");
   EXPECT_FALSE(fs::exists(store)) << "a refused sweep created its store";
 }
 

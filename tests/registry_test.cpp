@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "plumetrace/core/config.hpp"
@@ -134,6 +135,45 @@ TEST(Registry, AddsAndReplacesAnEntryMadeAtRunTime) {
   ASSERT_EQ(r.size(), 2u);
   EXPECT_EQ(r.find("sized-gadget"), 1u);
   EXPECT_EQ(r[1].make(r[1].defaults, 0)->what(), "widget 6 -1");
+}
+
+TEST(Registry, AnUnknownNameOrNumberIsAnErrorNamingTheFamily) {
+  ThingRegistry r;
+  r.add<Widget, WidgetParams>("widget");
+  EXPECT_EQ(&r.at("widget", "thing"), &r[0]);
+  EXPECT_EQ(&r.at(0, "thing"), &r[0]);
+  try {
+    r.at("nothing", "thing");
+    ADD_FAILURE() << "an unknown name was found";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "unknown thing 'nothing'");
+  }
+  EXPECT_THROW(r.at(1, "thing"), std::invalid_argument);
+}
+
+// a family whose interface names hooks: each entry carries its own
+class Hooked {
+ public:
+  struct Hooks {
+    int (*weight)(const AnyParams& params) = nullptr;
+  };
+  virtual ~Hooked() = default;
+};
+class Light final : public Hooked {
+ public:
+  Light(const GadgetParams&, int) {}
+};
+
+TEST(Registry, EntriesCarryTheHooksTheirFamilyNames) {
+  static_assert(std::is_same_v<ThingRegistry::Hooks, NoHooks>);
+  Registry<Hooked, int> r;
+  r.add<Light, GadgetParams>("light", {.weight = [](const AnyParams& p) {
+                               return static_cast<int>(p.get<GadgetParams>().speed * 10);
+                             }});
+  r.add<Light, GadgetParams>("plain");
+  ASSERT_NE(r[0].hooks.weight, nullptr);
+  EXPECT_EQ(r[0].hooks.weight(r[0].defaults), 10);
+  EXPECT_EQ(r[1].hooks.weight, nullptr);
 }
 
 TEST(AnyParams, CopiesAreDeep) {

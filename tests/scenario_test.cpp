@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
@@ -46,7 +48,7 @@ TEST(Scenario, MeanderFilesAreTheDefaultsInTheMeanderingWind) {
   for (const char* name : {"meander-weak.toml", "meander-strong.toml"}) {
     Scenario s = load_scenario(kScenarios + name, {});
     EXPECT_EQ(s.wind.model, WindModel::kMeander) << name;
-    EXPECT_GT(s.wind.meander.gain, 0.0) << name;
+    EXPECT_GT(s.wind.get<MeanderParams>().gain, 0.0) << name;
     // the mean wind is the plugin's 0.9 m/s, at which the gains were chosen (docs/model.md 3.1),
     // and nothing but the wind differs from the defaults
     EXPECT_EQ(s.wind.velocity.x, 0.9) << name;
@@ -60,8 +62,58 @@ TEST(Scenario, MeanderFilesAreTheDefaultsInTheMeanderingWind) {
   strong.wind.velocity = Scenario{}.wind.velocity;
   EXPECT_EQ(scenario_to_toml(strong), scenario_to_toml(Scenario{}));
   const Scenario weak = load_scenario(kScenarios + "meander-weak.toml", {});
-  EXPECT_EQ(weak.wind.meander.damping, 0.071);
-  EXPECT_EQ(weak.wind.meander.bandwidth, 0.71);
+  EXPECT_EQ(weak.wind.get<MeanderParams>().damping, 0.071);
+  EXPECT_EQ(weak.wind.get<MeanderParams>().bandwidth, 0.71);
+}
+
+// the meandering wind's keys of 0.4.0 (wind.meander_gain, ...) are still accepted until the
+// next version, wherever a key is, as their new names in its own table, with a warning on stderr
+// naming the new key (issue 24)
+TEST(Scenario, OldMeanderKeyNamesAreTheirNewKeysWithAWarning) {
+  ::testing::internal::CaptureStderr();
+  // a file, a --set, a sweep axis
+  const std::string scenario = testing::temp_path("old", ".toml");
+  std::ofstream(scenario) << "[wind]\nmodel = \"meander\"\nmeander_gain = 0.05\n"
+                             "meander_damping = 0.2\n";
+  const Scenario s = load_scenario(scenario, {parse_override("wind.meander_nx=9")});
+  const std::string sweep = testing::temp_path("old", ".toml");
+  std::ofstream(sweep) << "name = \"old\"\nscenario = \"" << scenario
+                       << "\"\n[[axis]]\nkey = \"wind.meander_ky\"\nvalues = [5.0, 7.0]\n";
+  const ExpandedSweep expanded = expand_sweep(read_sweep_file(sweep), {});
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  // mapped to the new keys, and written with them only
+  const MeanderParams& m = s.wind.get<MeanderParams>();
+  EXPECT_EQ(m.gain, 0.05);
+  EXPECT_EQ(m.damping, 0.2);
+  EXPECT_EQ(m.nx, 9);
+  ASSERT_EQ(expanded.points.size(), 2u);
+  EXPECT_EQ(expanded.points[1].scenario.wind.get<MeanderParams>().ky, 7.0);
+  EXPECT_EQ(expanded.points[1].scenario.wind.get<MeanderParams>().gain, 0.05);
+  EXPECT_EQ(get_field(s, "wind.meander_gain"), get_field(s, "meander.gain"));
+  const std::string toml = scenario_to_toml(s);
+  EXPECT_EQ(toml.find("meander_"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("[meander]\ngain = 0.05  #"), std::string::npos) << toml;
+  // said once per name, naming the new key and where the old one was written
+  for (const char* old : {"gain", "damping", "nx", "ky"}) {
+    const std::string said =
+        std::string("wind.meander_") + old + " is deprecated: write meander." + old;
+    const auto at = err.find(said);
+    EXPECT_NE(at, std::string::npos) << said << " in " << err;
+    EXPECT_EQ(err.find(said, at + 1), std::string::npos) << said << " twice in " << err;
+  }
+  EXPECT_NE(err.find("plumetrace: warning: " + scenario + ": config key wind.meander_gain"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("plumetrace: warning: --set: config key wind.meander_nx"), std::string::npos)
+      << err;
+  // a bad value under an old name is refused naming the name as written
+  Scenario bad;
+  const std::string refused = config_error([&] { set_field(bad, "wind.meander_gain", 11.0); });
+  EXPECT_NE(refused.find("wind.meander_gain: must be a number >= 0 and <= 10"), std::string::npos)
+      << refused;
+  EXPECT_EQ(current_key("wind.meander_bandwidth"), "meander.bandwidth");
+  EXPECT_EQ(current_key("meander.bandwidth"), "meander.bandwidth");
+  EXPECT_EQ(renamed_keys().size(), 7u);
 }
 
 TEST(Scenario, PaperLiteralFileSetsEveryPresetRow) {

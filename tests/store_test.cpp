@@ -204,7 +204,7 @@ TEST(StoreDamage, AChangedValueALostRunAndAnAddedRunAreRefusedByTheChecksum) {
   expect_edit_refused("DELETE FROM runs WHERE point = 0 AND trial = 5;", {"checksum", "47"});
   expect_edit_refused(
       "INSERT INTO runs SELECT sweep, point, trial + 100, seed, config_hash, outcome, success, "
-      "time_s, d_t, d_u, overhead, losses, odor_fraction, steps, wind_samples FROM runs LIMIT 1;",
+      "time_s, d_t, d_u, overhead, losses, odor_fraction, steps, wind_samples, t_first_odor, d_first_odor, declaration_error FROM runs LIMIT 1;",
       {"checksum", "49"});
   expect_edit_refused("UPDATE points SET config = config || ' ' WHERE point = 1;",
                       {"points", "checksum"});

@@ -13,6 +13,7 @@
 #include "lochmatter2008/summary.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/exports.hpp"
@@ -353,7 +354,7 @@ TEST(Campaign, OneAndTwoThreadsGiveIdenticalRows) {
 TEST(Campaign, OneAndTwoThreadsGiveIdenticalRowsInTheMeanderingWind) {
   std::string text = kQuickSweep;
   const std::string set = "[set]\n";
-  text.insert(text.find(set) + set.size(), "wind.model = \"meander\"\nwind.meander_gain = 0.3\n");
+  text.insert(text.find(set) + set.size(), "wind.model = \"meander\"\nmeander.gain = 0.3\n");
   const std::vector<ExpandedSweep> sweeps = {expand_sweep(read_sweep_file(write_sweep(text)), {})};
   ASSERT_EQ(sweeps[0].points[0].scenario.wind.model, WindModel::kMeander);
   const auto one = run_fresh(sweeps, 1);
@@ -418,6 +419,43 @@ TEST(SharedPlume, ScenariosWithDifferentPlumesAreRefused) {
   EXPECT_THROW(run_shared({&a, &b}, 1, 0), std::invalid_argument);
 }
 
+// a key whose help text the test edits, in the slot of the constant wind's params (which have
+// no keys of their own)
+std::string g_help = "a help text";
+struct HelpedParams {
+  double value = 1.0;
+  template <class V>
+  void fields(V& v) {
+    v("helped", value, g_help, kAnyNumber);
+  }
+};
+
+// issue 24: a run's identity hashed the TOML with its help comments, so that editing one help
+// text made every store refuse its own sweep; it hashes the values alone
+TEST(ConfigHash, IsOfTheValuesNotOfTheHelpTexts) {
+  Scenario s;
+  const std::string text = canonical_config(s);
+  EXPECT_EQ(text.find('#'), std::string::npos) << text;
+  EXPECT_NE(text.find("\nwind.model='constant'\nwind.vx=1.0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nmeander.gain=0.14\n"), std::string::npos) << text;
+  EXPECT_EQ(scenario_hash(s), hash_text(text));
+  const SweepPoint point = expand_sweep(read_sweep_file(write_sweep(kQuickSweep)), {}).points[0];
+  EXPECT_EQ(point.config_hash, scenario_hash(point.scenario));
+  s.wind.params.at(wind_field_registry(), 0) = AnyParams(HelpedParams{});
+  const std::string toml = scenario_to_toml(s), hash = scenario_hash(s), plume = plume_key(s);
+  g_help = "another help text";
+  EXPECT_NE(scenario_to_toml(s), toml);  // the help shows in the TOML
+  EXPECT_EQ(scenario_hash(s), hash);
+  EXPECT_EQ(plume_key(s), plume);
+  // a value does change them
+  s.wind.params.at(wind_field_registry(), 0).get<HelpedParams>().value = 2.0;
+  EXPECT_NE(scenario_hash(s), hash);
+  EXPECT_NE(plume_key(s), plume);
+  Scenario other;
+  other.wind.get<MeanderParams>().kx = 11.0;
+  EXPECT_NE(scenario_hash(other), scenario_hash(Scenario{}));
+}
+
 TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
   Scenario a, b;
   b.arena.y_max = 3.0;  // the robot's wall; the constant wind's plume does not see it
@@ -425,8 +463,11 @@ TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
   a.wind.model = b.wind.model = WindModel::kMeander;
   EXPECT_NE(plume_key(a), plume_key(b));  // the wind's grid covers the arena
   b = a;
-  b.wind.meander.gain = 0.2;
+  b.wind.get<MeanderParams>().gain = 0.2;
   EXPECT_NE(plume_key(a), plume_key(b));
+  // the constant wind's plume does not see the meander's keys
+  a.wind.model = b.wind.model = WindModel::kConstant;
+  EXPECT_EQ(plume_key(a), plume_key(b));
 }
 
 TEST(Campaign, SharedAndSeparatePlumesGiveIdenticalRows) {

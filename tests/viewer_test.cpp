@@ -392,8 +392,7 @@ TEST(Trace, Format1TracesStillReadWithTheTrueWindWhereItIsKnown) {
   }
   EXPECT_EQ(back.trace.snapshots.back().x, run.trace.snapshots.back().x);
   // a meander with no gain blows its mean; one with gain is unknown (NaN), and the page says so
-  const RecordedRun calm =
-      recorded_file_run("meander-strong.toml", {{"wind.meander_gain", 0.0}}, 0.0);
+  const RecordedRun calm = recorded_file_run("meander-strong.toml", {{"meander.gain", 0.0}}, 0.0);
   EXPECT_EQ(read_trace(format_1_trace(calm)).trace.agents[0].steps.back().true_wind.x, 0.9);
   const RecordedRun meander = recorded_file_run("meander-strong.toml", {}, 0.0);
   const RecordedRun unknown = read_trace(format_1_trace(meander));

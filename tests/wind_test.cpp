@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -63,7 +64,7 @@ Scenario meander_scenario() {
 }
 
 MeanderWind make_meander(const Scenario& s, std::uint64_t seed) {
-  return MeanderWind(s.wind, wind_region(s.arena), Rng(seed));
+  return MeanderWind(s.wind.get<MeanderParams>(), s.wind.velocity, wind_region(s.arena), Rng(seed));
 }
 
 // --- the boundary noise -----------------------------------------------------------------------
@@ -199,7 +200,7 @@ TEST(ColouredNoise, VarianceAndTimeScaleMatchTheAnalyticValuesWithin4Sigma) {
 // small-amplitude meander of Farrell et al. (damping 0.071, bandwidth 0.71 rad/s).
 TEST(MeanderWind, CornersHaveTheNoisesVarianceAndCorrelationWithin4Sigma) {
   Scenario s = meander_scenario();
-  s.wind.meander = {.gain = 0.2, .damping = 0.071, .bandwidth = 0.71};
+  s.wind.get<MeanderParams>() = {.gain = 0.2, .damping = 0.071, .bandwidth = 0.71};
   const ColouredNoiseParams p{0.2, 0.071, 0.71};
   const std::size_t n = 46875;
   const std::size_t lags[] = {31, 94, 156};  // 1, 3 and 5 s
@@ -293,9 +294,10 @@ TEST(MeanderWind, TheGridsTimeMeanIsTheMeanWindWithin4Sigma) {
 // standard error).
 TEST(MeanderWind, ATracersSpreadGrowsAsTaylorsTheoremPredicts) {
   Scenario s = meander_scenario();
-  s.wind.meander.gain = 0.3;
-  s.wind.meander.damping = 1.0;
-  s.wind.meander.bandwidth = 2.0;
+  MeanderParams& m = s.wind.get<MeanderParams>();
+  m.gain = 0.3;
+  m.damping = 1.0;
+  m.bandwidth = 2.0;
   validate(s);
   const double x0 = s.arena.x_min + 4.0;
   const auto n = static_cast<std::size_t>(8.0 / s.wind.velocity.x / kDt);
@@ -372,7 +374,7 @@ TEST(MeanderWind, ATracersSpreadGrowsAsTaylorsTheoremPredicts) {
 
 TEST(MeanderWind, ZeroGainIsTheMeanWindBitForBit) {
   Scenario s = meander_scenario();
-  s.wind.meander.gain = 0.0;
+  s.wind.get<MeanderParams>().gain = 0.0;
   s.wind.velocity = {0.9, -0.1, 0.01};
   MeanderWind wind = make_meander(s, 5);
   EXPECT_TRUE(wind.uniform_in_space());
@@ -385,7 +387,7 @@ TEST(MeanderWind, ZeroGainIsTheMeanWindBitForBit) {
     ASSERT_EQ(bits(a.y), bits(-0.1));
     ASSERT_EQ(bits(a.z), bits(0.01));
   }
-  s.wind.meander.gain = 1e-9;
+  s.wind.get<MeanderParams>().gain = 1e-9;
   EXPECT_FALSE(make_meander(s, 5).uniform_in_space());
 }
 
@@ -427,7 +429,7 @@ TEST(MeanderWind, ZeroGainRunsAreTheConstantWindsBitForBit) {
     laminar.supervisor.timeout = 150.0;
     Scenario meander = laminar;
     meander.wind.model = WindModel::kMeander;
-    meander.wind.meander.gain = 0.0;
+    meander.wind.get<MeanderParams>().gain = 0.0;
     validate(meander);
     for (std::uint64_t trial : {0u, 1u}) {
       const auto a = run_bits(laminar, trial), b = run_bits(meander, trial);
@@ -573,20 +575,18 @@ TEST(MeanderWind, TheWindDrawsOnlyFromItsOwnStream) {
     return out;
   };
   // zero gain: the filaments are those of the constant wind, whatever the wind's seed
-  s.wind.meander.gain = 0.0;
+  s.wind.get<MeanderParams>().gain = 0.0;
   const auto laminar = plume_after(std::make_unique<ConstantWind>(s.wind.velocity), 700);
   for (std::uint64_t seed : {1u, 2u, 999u}) {
-    EXPECT_TRUE(plume_after(std::make_unique<MeanderWind>(s.wind, wind_region(s.arena), Rng(seed)),
-                            700) == laminar)
+    EXPECT_TRUE(plume_after(make_wind_field(s.wind, wind_region(s.arena), Rng(seed)), 700) ==
+                laminar)
         << seed;
   }
   // with a gain the filaments move with the wind, but the plume's own draws (the release
   // positions, appended last) are the same whatever the wind's seed
-  s.wind.meander.gain = 0.3;
-  const auto first =
-      plume_after(std::make_unique<MeanderWind>(s.wind, wind_region(s.arena), Rng(1)), 100);
-  const auto second =
-      plume_after(std::make_unique<MeanderWind>(s.wind, wind_region(s.arena), Rng(2)), 100);
+  s.wind.get<MeanderParams>().gain = 0.3;
+  const auto first = plume_after(make_wind_field(s.wind, wind_region(s.arena), Rng(1)), 100);
+  const auto second = plume_after(make_wind_field(s.wind, wind_region(s.arena), Rng(2)), 100);
   ASSERT_EQ(first.size(), second.size());
   const std::size_t n = first.size() / 4;  // filaments; the last 4 were released in step 100
   EXPECT_NE(first[0], second[0]);          // the oldest moved in different winds
@@ -613,7 +613,7 @@ class WindLogger final : public Controller {
 
 TEST(MeanderWind, TheWindSensorReadsTheFieldThePlumeMovesIn) {
   Scenario s = meander_scenario();
-  s.wind.meander.gain = 0.3;  // a strong meander, so that neighbouring points differ
+  s.wind.get<MeanderParams>().gain = 0.3;  // a strong meander, so that neighbouring points differ
   s.sim.warmup = 1.0;
   s.plume.sigma_p = 0.0;  // filaments move by the wind alone
   s.plume.gamma = 0.0;
@@ -670,7 +670,7 @@ TEST(MeanderWind, AgentsSharingTheMeanderingPlumeEqualSeparateRuns) {
 
 TEST(MeanderWind, TheInsideStaysStableWithSubsteps) {
   Scenario s = meander_scenario();
-  s.wind.meander.gain = 0.3;
+  s.wind.get<MeanderParams>().gain = 0.3;
   const double dt = 0.4;  // longer than one stable substep of the default grid
   MeanderWind wind = make_meander(s, 4);
   double largest = 0.0;
@@ -693,16 +693,17 @@ TEST(MeanderWind, TheInsideStaysStableWithSubsteps) {
 // issue 22, G1: gain 10, bandwidth 100 and damping 10, each inside its range, made the wind NaN
 TEST(MeanderWind, UnstableCombinationsAreRefusedNamingTheKeys) {
   Scenario s = meander_scenario();
-  s.wind.meander.gain = 10.0;
-  s.wind.meander.bandwidth = 100.0;
-  s.wind.meander.damping = 10.0;
+  MeanderParams& m = s.wind.get<MeanderParams>();
+  m.gain = 10.0;
+  m.bandwidth = 100.0;
+  m.damping = 10.0;
   try {
     validate(s);
     ADD_FAILURE() << "a meander that overshoots its grid was accepted";
   } catch (const ConfigError& e) {
     const std::string what = e.what();
-    for (const char* key : {"wind.meander_gain", "wind.meander_bandwidth", "wind.meander_damping",
-                            "wind.meander_kx", "wind.meander_nx"}) {
+    for (const char* key :
+         {"meander.gain", "meander.bandwidth", "meander.damping", "meander.kx", "meander.nx"}) {
       EXPECT_NE(what.find(key), std::string::npos) << key << ": " << what;
     }
   }
@@ -719,7 +720,7 @@ TEST(MeanderWind, EveryAcceptedCombinationStaysFinite) {
   int accepted = 0;
   for (int trial = 0; trial < 400 && accepted < 60; ++trial) {
     Scenario s = meander_scenario();
-    MeanderParams& m = s.wind.meander;
+    MeanderParams& m = s.wind.get<MeanderParams>();
     m.gain = log_uniform(1e-3, 10.0);
     m.damping = log_uniform(1e-3, 10.0);
     m.bandwidth = log_uniform(1e-3, 100.0);
@@ -768,23 +769,55 @@ TEST(MeanderWind, BadKeysAreRefusedNamingThem) {
     }
     return std::string();
   };
-  EXPECT_NE(message("wind.meander_kx", 0.0).find("wind.meander_kx"), std::string::npos);
-  EXPECT_NE(message("wind.meander_damping", -1.0).find("wind.meander_damping"), std::string::npos);
-  EXPECT_NE(message("wind.meander_gain", 11.0).find("wind.meander_gain"), std::string::npos);
-  EXPECT_NE(message("wind.meander_bandwidth", 0.0).find("wind.meander_bandwidth"),
-            std::string::npos);
-  EXPECT_NE(message("wind.meander_nx", 1.0).find("wind.meander_nx"), std::string::npos);
+  EXPECT_NE(message("meander.kx", 0.0).find("meander.kx"), std::string::npos);
+  EXPECT_NE(message("meander.damping", -1.0).find("meander.damping"), std::string::npos);
+  EXPECT_NE(message("meander.gain", 11.0).find("meander.gain"), std::string::npos);
+  EXPECT_NE(message("meander.bandwidth", 0.0).find("meander.bandwidth"), std::string::npos);
+  EXPECT_NE(message("meander.nx", 1.0).find("meander.nx"), std::string::npos);
   // a grid too fine for the step: more than kMaxWindSubsteps substeps
   Scenario fine = meander_scenario();
-  fine.wind.meander.nx = 201;
-  fine.wind.meander.ny = 201;
-  fine.wind.meander.kx = fine.wind.meander.ky = 1000.0;
+  MeanderParams& m = fine.wind.get<MeanderParams>();
+  m.nx = m.ny = 201;
+  m.kx = m.ky = 1000.0;
   try {
     validate(fine);
     ADD_FAILURE() << "a grid needing thousands of substeps was accepted";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("wind.meander_kx"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("meander.kx"), std::string::npos) << e.what();
   }
+}
+
+// the wind fields' registrations say what scenario, sweep and trace code ask of them (issue 24)
+TEST(WindRegistry, EachFieldSaysThroughItsHooksWhatItIs) {
+  const WindRegion arena{0.0, 16.0, -2.0, 2.0}, wider{0.0, 16.0, -3.0, 3.0};
+  WindParams wind;  // the constant wind: steady, the same over any region, never refused
+  EXPECT_TRUE(wind_is_steady(wind));
+  EXPECT_EQ(wind_identity(wind, arena), "");
+  MeanderParams& m = wind.get<MeanderParams>();
+  m.gain = 10.0;
+  m.bandwidth = 100.0;
+  EXPECT_NO_THROW(check_wind_field(wind, arena, 0.032));
+  // the meander: steady at gain 0 alone, its grid's region part of its identity, its
+  // stability checked
+  wind.model = WindModel::kMeander;
+  EXPECT_FALSE(wind_is_steady(wind));
+  EXPECT_THROW(check_wind_field(wind, arena, 0.032), ConfigError);
+  m = MeanderParams{};
+  EXPECT_NO_THROW(check_wind_field(wind, arena, 0.032));
+  EXPECT_NE(wind_identity(wind, arena), wind_identity(wind, wider));
+  m.gain = 0.0;
+  EXPECT_TRUE(wind_is_steady(wind));
+  // the keys live in the field's own table
+  EXPECT_EQ(wind_field_registry()[static_cast<std::size_t>(WindModel::kMeander)].table, "meander");
+}
+
+TEST(WindRegistry, EveryFactoryThrowsOnAModelItDoesNotKnow) {
+  WindParams wind;
+  wind.model = static_cast<WindModel>(wind_field_registry().size());
+  EXPECT_THROW(make_wind_field(wind, {0.0, 16.0, -2.0, 2.0}, Rng(1)), std::invalid_argument);
+  EXPECT_THROW(wind_is_steady(wind), std::invalid_argument);
+  EXPECT_THROW(make_odor_field("no-such-odor", PlumeParams{}, SourceParams{}, 16.0, 1),
+               std::invalid_argument);
 }
 
 }  // namespace

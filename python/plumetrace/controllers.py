@@ -11,11 +11,31 @@ built-in ones see (docs/model.md section 7.1):
   ``step()`` call that received it: keep the sample, not the probe (a kept probe raises
   RuntimeError).
 
+A controller that says so reads more (``reads``, a class attribute or a method: a tuple of
+names from ``READS``; docs/agents.md): with ``"concentration"``, ``observation.concentration``
+is the odor sensor's reading after the sensor model (``odor.model``; NaN otherwise), whose
+threshold test is ``observation.odor``; with ``"messages"``, ``observation.messages`` holds the
+teammates' messages delivered this step (``Message``: ``from_``, the sender's index, ``sent``,
+its time, ``data``, four numbers; also unpacked as ``from_, sent, data``), ordered by (sent,
+from_), else it is empty. An unknown name raises ValueError naming it, at registration for a
+class attribute, else when a run makes the controller.
+
 It answers with a ``Command``: ``go(heading)`` (turn on the spot, then drive straight),
-``turn_to(heading)``, ``curve(curvature)`` (arc at the wheel-speed limit), ``stop()`` or
-``abandon()`` (give up; the run fails). Headings are in the odometry frame; a heading or
-curvature that is not finite raises ValueError where the command is made, and anything but a
-Command returned from ``step`` raises TypeError.
+``turn_to(heading)``, ``curve(curvature)`` (arc at the wheel-speed limit), ``stop()``,
+``abandon()`` (give up; the run fails) or ``declare_source(x, y)`` (the source is there, in the
+odometry frame: the run ends, a success within ``supervisor.declaration_radius`` of it, else
+``wrong_declaration``). ``command.with_message([a, b, c, d])`` also broadcasts four numbers to
+the teammates in range (``team.range``), who read them from the next step on. Headings are in the
+odometry frame; a heading, curvature, declared position or message number that is not finite
+raises ValueError where the command is made, and anything but a Command returned from ``step``
+raises TypeError.
+
+A controller may show its state (``snapshot()``, for traces and the viewer): a dict with any of
+``points`` (N x 2, odometry frame), ``weights`` (N), ``path`` (M x 2), ``grid`` (``x0``, ``y0``,
+``dx``, ``dy``: the first cell's centre and the cell size; ``values``, an (ny, nx) array, rows
+by y, or a flat one with ``nx`` and ``ny``) and ``estimate`` ((x, y) or None), or None.
+``snapshot_of(controller)`` gives it back as a run takes it: checked (finite numbers, at most
+200,000 of them, shapes that agree; a TypeError or ValueError names the key) and converted.
 
 A controller with keys of its own declares them and is registered under a name::
 
@@ -47,6 +67,8 @@ from collections.abc import Mapping
 from . import _core
 
 Command = _core.Command
+Message = _core.Message
+READS = _core.READS  # the names a controller's ``reads`` may hold
 upwind_heading = _core.upwind_heading
 guess_plume_side = _core.guess_plume_side
 wrap_angle = _core.wrap_angle
@@ -232,6 +254,10 @@ def register_controller(name, factory, params=None):
     if not callable(factory):
         raise TypeError(f"register_controller('{name}'): the factory must be callable (a class "
                         f"or a function f(params, rng)), got {_shown(factory)}")
+    reads = getattr(factory, "reads", None)
+    if reads is not None and not callable(reads):
+        # why: a class attribute is checked now, not at the first run
+        _core.reads_flags(reads, f"register_controller('{name}')")
     declared = getattr(factory, "params", None) if params is None else params
     declared = {} if declared is None else declared
     if not isinstance(declared, Mapping):
@@ -263,6 +289,7 @@ class Controller:
     state = "python"
     losses = 0
     params = {}
+    reads = ()  # what it reads besides the binary odor: names of READS
 
     def __init__(self, params=None, rng=None):
         self.params = params
@@ -297,6 +324,19 @@ class Controller:
         return Command.abandon()
 
     @staticmethod
+    def declare_source(x, y):
+        """Declare the source at (x, y) (m, odometry frame): the run ends, scored there."""
+        return Command.declare_source(x, y)
+
+    @staticmethod
     def measure_upwind(wind, observation):
         """One wind sample turned into the upwind heading (rad, odometry frame)."""
         return upwind_heading(wind.measure_wind_body(), observation.odometry.heading)
+
+
+def snapshot_of(controller):
+    """The snapshot of `controller` (an object with ``snapshot()``) as a run takes it: checked and
+    converted, as a dict of ``points`` (N x 2 array), ``weights`` (N), ``path`` (M x 2),
+    ``grid`` (x0, y0, dx, dy, nx, ny and values of shape (ny, nx); None where there is none)
+    and ``estimate`` ((x, y) or None). Raises the TypeError or ValueError a run would raise."""
+    return _core.controller_snapshot(controller)

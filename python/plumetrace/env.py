@@ -24,7 +24,10 @@ the action, moves the robot and checks the run, exactly as the runner does; 1 ma
 simulation step a decision.
 
 Observation (``observation_space``, float32, 8 values):
-    [odor (0 or 1, at the last sensing), x, y, heading (odometry relative to the release pose:
+    [odor (0 or 1, at the last sensing; with ``observation="concentration"``, the odor sensor's
+     reading there instead, >= 0, in the odor model's units after the sensor model
+     ``odor.model``: odor is perceived where it reaches ``odor.threshold``),
+     x, y, heading (odometry relative to the release pose:
      m, m, rad in [-pi, pi]), odometer (m), wind_x, wind_y (one noisy wind sample in the robot
      frame, m/s, taken at the end of the decision; 0 when ``wind_every_step`` is False;
      ``env.measure_wind()`` takes one on demand), odor fraction (the share of this decision's
@@ -32,7 +35,8 @@ Observation (``observation_space``, float32, 8 values):
 Action (``action_space``): a heading in [-pi, pi] (rad, odometry frame; 0 is the start heading,
 upwind) to turn toward and drive along, as a float or an array of one; with
 ``discrete_headings=n``, ``Discrete(n)``: action i drives along heading 2 pi i / n. Any
-``plumetrace.controllers.Command`` (turn_to, curve, stop, abandon) is accepted as well. Anything
+``plumetrace.controllers.Command`` (turn_to, curve, stop, abandon, declare_source) is accepted
+as well. Anything
 else is refused before the world moves: a bool, None, text, a complex number or an array of
 other than one real number raises TypeError, a heading that is not finite or an index out of
 0 to n - 1 ValueError, each naming the action.
@@ -40,7 +44,9 @@ Reward: the sum over the decision's simulation steps of ``reward_fn(info)`` (inf
 by default 1.0 at the step the robot reaches the source and 0.0 otherwise: an episode's return
 is 1 for a success and 0 otherwise, whatever the decision interval.
 terminated: the run ended in a state of the task: success (within supervisor.success_radius of
-the source), wall (the robot touched the arena's wall) or gave_up (a ``Command.abandon()``).
+the source, or a declaration within supervisor.declaration_radius), wall (the robot touched the
+arena's wall), gave_up (a ``Command.abandon()``) or wrong_declaration (a
+``Command.declare_source(x, y)`` farther from the source).
 truncated: the time limit, supervisor.timeout (1200 s after release by default).
 info: time (s since release), outcome, the true pose and source_distance (for analysis and
 shaped rewards, not for the agent), odometry (x, y, heading) and odometer as in the
@@ -267,19 +273,29 @@ class PlumeEnv(Env):
     `decision_interval`: simulation steps per decision (an int >= 1); `render_mode`: None,
     "rgb_array" or "human"; `discrete_headings`: None (a Box action, a heading in rad) or n (a
     Discrete(n) action); `wind_every_step`: take a wind sample with every observation;
-    `reward_fn`: f(info) -> float, called every simulation step (default: 1.0 on success).
+    `reward_fn`: f(info) -> float, called every simulation step (default: 1.0 on success);
+    `observation`: "binary" (value 0 is the odor, 0 or 1) or "concentration" (value 0 is the
+    odor sensor's reading, a float >= 0).
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 1.0 / (0.032 * 8)}
 
     def __init__(self, scenario=None, decision_interval=8, render_mode=None,
                  discrete_headings=None, wind_every_step=True, reward_fn=None, overrides=None,
-                 **keys):
+                 observation="binary", **keys):
         if "seed" in keys:
             raise TypeError("PlumeEnv takes no seed: reset(seed=...) seeds an episode")
         path, settings = _settings(scenario, None, overrides, keys)
         self.config = _load_json(_core.resolve_json(path, settings))  # checks every key now
         self._path, self._settings = path, settings
+        if self.config["team"]["count"] != 1:
+            raise ValueError(f"team.count = {self.config['team']['count']}: PlumeEnv drives one "
+                             "robot (team.count = 1)")
+        if not isinstance(observation, str) or observation not in _OBSERVATIONS:
+            raise ValueError(f"observation must be one of {list(_OBSERVATIONS)}, got "
+                             f"{_shown(observation)}")
+        self.observation = observation
+        self._reads = ("concentration",) if observation == "concentration" else ()
         self.decision_interval = _whole("decision_interval", decision_interval, 1, 2**31 - 1)
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be None or one of "
@@ -290,7 +306,8 @@ class PlumeEnv(Env):
         self.dt = self.config["sim"]["dt"] * self.decision_interval  # simulated s per decision
         self.metadata = {**self.metadata, "render_fps": 1.0 / self.dt}  # real time
 
-        self.observation_space = Box(*_observation_bounds(self.config), dtype=np.float32)
+        self.observation_space = Box(*_observation_bounds(self.config, observation),
+                                     dtype=np.float32)
         if discrete_headings is None:
             self.discrete_headings = None
             self.action_space = Box(np.array([-math.pi], np.float32),
@@ -304,6 +321,7 @@ class PlumeEnv(Env):
         self._next_trial = 0
         self._world = None
         self._last = None
+        self._odor = False  # odor perceived at the last sensing
         self._odometry = None  # the last observation's odometry and odometer, in float64
         self._path_xy = []
         self._renderer = None
@@ -321,7 +339,8 @@ class PlumeEnv(Env):
         options = options or {}
         self.trial = _whole("trial", options.get("trial", self._next_trial), 0, 2**64 - 1)
         self._next_trial = self.trial + 1
-        self._world = _core.World(self._path, self._settings, self.episode_seed, self.trial)
+        self._world = _core.World(self._path, self._settings, self.episode_seed, self.trial,
+                                  self._reads)
         seen = self._world.observe()
         self._last = self._observation(seen, float(seen.odor))
         self._path_xy = [self._world.pose()[:2]]
@@ -355,7 +374,7 @@ class PlumeEnv(Env):
             self._last = self._observation(seen, odor / sensed)
         info = self._info(world.done())
         outcome = info["outcome"]
-        terminated = outcome in ("success", "wall", "gave_up")
+        terminated = outcome in ("success", "wall", "gave_up", "wrong_declaration")
         truncated = outcome == "timeout"
         if self.render_mode == "human":
             self.render()
@@ -374,7 +393,7 @@ class PlumeEnv(Env):
         if self._renderer is None:
             self._renderer = _Renderer(self.config, human=self.render_mode == "human")
         frame = self._renderer.draw(self._world, self._path_xy, self.episode_seed, self.trial,
-                                    bool(self._last[0]), 1.0 / self.metadata["render_fps"])
+                                    self._odor, 1.0 / self.metadata["render_fps"])
         return frame if self.render_mode == "rgb_array" else None
 
     def measure_wind(self):
@@ -395,7 +414,9 @@ class PlumeEnv(Env):
         wind = self._world.measure_wind_body() if self.wind_every_step else (0.0, 0.0)
         p = seen.odometry
         self._odometry = (p.x, p.y, p.heading), seen.odometer
-        return np.array([float(seen.odor), p.x, p.y, p.heading, seen.odometer, wind[0], wind[1],
+        self._odor = seen.odor
+        sensed = seen.concentration if self.observation == "concentration" else float(seen.odor)
+        return np.array([sensed, p.x, p.y, p.heading, seen.odometer, wind[0], wind[1],
                          odor_fraction], dtype=np.float32)
 
     def _info(self, done):
@@ -419,17 +440,22 @@ class PlumeEnv(Env):
         return _core.Command.go(_core.wrap_angle(2.0 * math.pi * _action_number(action, n) / n))
 
 
-def _observation_bounds(config):
+_OBSERVATIONS = ("binary", "concentration")  # PlumeEnv(observation=...): what value 0 holds
+
+
+def _observation_bounds(config, observation):
     # why: the odometry is the true pose relative to the release pose, so |x|, |y| and the
     # odometer never exceed the path length, and the centre never drives faster than
     # robot.wheel_speed; a run lasts at most supervisor.timeout plus a step (2 steps and a
-    # relative 1e-6 spare for rounding). The wind sample has Gaussian noise: unbounded.
+    # relative 1e-6 spare for rounding). The wind sample has Gaussian noise: unbounded. A
+    # concentration is >= 0 (every sensor model clips its reading there), with no upper bound.
     dt = config["sim"]["dt"]
     steps = math.ceil(config["supervisor"]["timeout"] / dt) + 2
     reach = config["robot"]["wheel_speed"] * dt * steps * (1.0 + 1e-6)
     inf = math.inf
     low = np.array([0.0, -reach, -reach, -math.pi, 0.0, -inf, -inf, 0.0])
-    high = np.array([1.0, reach, reach, math.pi, reach, inf, inf, 1.0])
+    high = np.array([1.0 if observation == "binary" else inf, reach, reach, math.pi, reach, inf,
+                     inf, 1.0])
     # why: float32 bounds, rounded as the observations are (rounding keeps x <= high)
     return low.astype(np.float32), high.astype(np.float32)
 

@@ -39,6 +39,21 @@ def _register_a_zigzag(pt):
     pt.register_controller("zigzag", Zigzag)
 
 
+class Shows:
+    """A controller that stands still and whose snapshot() returns what it was given."""
+
+    def __init__(self, shown):
+        self.shown = shown
+
+    def step(self, obs, wind):
+        from plumetrace.controllers import Command
+
+        return Command.stop()
+
+    def snapshot(self):
+        return self.shown
+
+
 def overhead_bounds(rows, out):
     """Every overhead number plumetrace prints or draws for the sweep `rows` (SweepRows), as
     (where, value): rows.summary()'s interval, plumetrace.report's report.csv and report.md

@@ -223,18 +223,28 @@ actions = st.one_of(
     st.tuples(st.just("measure"), st.integers(0, 3)),
     st.tuples(st.just("raise"), st.sampled_from(sorted(EXCEPTIONS))),
     st.tuples(st.just("junk"), st.sampled_from(sorted(JUNK))),
+    st.tuples(st.just("declare"), st.floats()),
+    st.tuples(st.just("message"), st.lists(st.floats(), max_size=5)),
     st.tuples(st.just("state"), st.sampled_from(["lost", "", "\u00e9t\u00e9", 7, "bad"])),
     st.tuples(st.just("losses"), st.one_of(st.integers(), st.integers(0, 5),
                                            st.sampled_from(["2", 2.0, True, None,
                                                             np.int64(1)]))))
 
 
-def expected_error(plan, factory):
+# what a controller says it reads (Controller.reads)
+READS = [(), ("concentration",), ("messages", "concentration"), "binary",
+         ("concentration", "smell")]
+reads_of = st.sampled_from(READS)
+
+
+def expected_error(plan, factory, reads=()):
     """What the plan makes a run raise: (type, text the message starts with), or None."""
     if factory == "raise":
         return ValueError, "the factory says no"
     if factory == "none":
         return TypeError, "the controller factory must return an object with a step"
+    if "smell" in reads:
+        return ValueError, "Planned.reads: unknown 'smell'"
     kept = False
     for what, arg in plan:
         if what in ("go", "turn_to", "curve") and not math.isfinite(arg):
@@ -242,6 +252,12 @@ def expected_error(plan, factory):
             return ValueError, f"Command.{what}: {name} must be a finite number"
         if what == "abandon":
             return None
+        if what == "declare":
+            if not math.isfinite(arg):
+                return ValueError, "Command.declare_source: x must be a finite number"
+            return None
+        if what == "message" and (len(arg) != 4 or not all(map(math.isfinite, arg))):
+            return ValueError, "Command.with_message: data"
         if what == "keep_probe":
             kept = True
         if what == "use_kept" and kept:
@@ -261,9 +277,9 @@ def expected_error(plan, factory):
     return None
 
 
-def controller_of(plan, factory_kind, kept):
-    """A controller factory following `plan` step by step (then standing still); probes it
-    keeps go to `kept`."""
+def controller_of(plan, factory_kind, kept, reads=()):
+    """A controller factory following `plan` step by step (then standing still), reading
+    `reads`; probes it keeps go to `kept`."""
 
     class Planned:
         state = "python"
@@ -274,12 +290,19 @@ def controller_of(plan, factory_kind, kept):
             self.kept = None
 
         def step(self, obs, wind):
+            # it sees the concentration if it asks for it; alone, no messages
+            assert math.isnan(obs.concentration) != ("concentration" in reads)
+            assert obs.messages == ()
             what, arg = plan[self.k] if self.k < len(plan) else ("stop", None)
             self.k += 1
             if what in ("go", "turn_to", "curve"):
                 return getattr(Command, what)(arg)
             if what == "abandon":
                 return Command.abandon()
+            if what == "declare":
+                return Command.declare_source(arg, 0.0)
+            if what == "message":
+                return Command.stop().with_message(arg)
             if what == "keep_probe":
                 self.kept = wind
                 kept.append(wind)
@@ -301,6 +324,8 @@ def controller_of(plan, factory_kind, kept):
                 self.losses = arg
             return Command.stop()
 
+    Planned.reads = reads
+
     def factory(scenario, rng):
         if factory_kind == "raise":
             raise ValueError("the factory says no")
@@ -311,11 +336,11 @@ def controller_of(plan, factory_kind, kept):
     return factory
 
 
-def _check_outcome(call, plan, factory_kind):
+def _check_outcome(call, plan, factory_kind, reads=()):
     kept = []
-    expected = expected_error(plan, factory_kind)
+    expected = expected_error(plan, factory_kind, reads)
     try:
-        result = call(controller_of(plan, factory_kind, kept))
+        result = call(controller_of(plan, factory_kind, kept, reads))
     except BaseException as e:  # noqa: B902 -- KeyboardInterrupt from a controller included
         assert expected is not None, f"unexpected {type(e).__name__}: {e}"
         kind, text = expected
@@ -339,13 +364,17 @@ factories = st.sampled_from(["ok", "ok", "ok", "ok", "raise", "none"])
 
 
 @bounded(300)
-@given(plans, factories, st.booleans())
-def check_runs_with_any_controller_give_a_result_or_its_error(plan, factory_kind, trace):
-    show("run controller", (plan, factory_kind, trace))
+@given(plans, factories, st.booleans(), reads_of)
+def check_runs_with_any_controller_give_a_result_or_its_error(plan, factory_kind, trace, reads):
+    show("run controller", (plan, factory_kind, trace, reads))
     r = _check_outcome(lambda f: pt.run(controller=f, trace=trace, sim__warmup=0.0,
-                                        supervisor__timeout=2.0), plan, factory_kind)
+                                        supervisor__timeout=2.0), plan, factory_kind, reads)
     if r is not None:
-        assert r["outcome"] in ("timeout", "gave_up", "wall", "success")
+        assert r["outcome"] in ("timeout", "gave_up", "wall", "success", "wrong_declaration")
+        if r["declaration_error"] is not None:
+            assert r["outcome"] in ("success", "wrong_declaration")
+        if r["outcome"] == "wrong_declaration":
+            assert r["declaration_error"] is not None
 
 
 @bounded(300)
@@ -385,14 +414,18 @@ env_actions = st.one_of(st.floats(), st.integers(), st.lists(st.floats(), max_si
 @bounded(150)
 @given(st.one_of(st.integers(0, 2**64 - 1), st.integers(), st.floats(), st.none()),
        st.lists(st.one_of(env_actions, st.integers(-2, 5)), max_size=40), st.integers(1, 20),
-       st.sampled_from([None, 1, 4]))
+       st.sampled_from([None, 1, 4]),
+       st.sampled_from([("binary", "ideal"), ("concentration", "ideal"),
+                        ("concentration", "first-order"), ("binary", "first-order")]))
 def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions, interval,
-                                                                  headings):
+                                                                  headings, sensing):
     from plumetrace.env import PlumeEnv
 
-    show("env", (seed, actions, interval, headings))
+    show("env", (seed, actions, interval, headings, sensing))
+    observation, model = sensing
     env = PlumeEnv(sim__warmup=0.0, supervisor__timeout=2.0, decision_interval=interval,
-                   discrete_headings=headings)
+                   discrete_headings=headings, observation=observation, odor__model=model,
+                   first_order__noise=50.0)
     try:
         env.reset(seed=seed)
     except (TypeError, ValueError) as e:
@@ -410,6 +443,79 @@ def check_env_episodes_under_any_actions_step_or_name_the_action(seed, actions, 
         assert obs.shape == (8,) and obs in env.observation_space and np.all(np.isfinite(obs))
         wind = env.measure_wind()
         assert all(math.isfinite(w) for w in wind)
+
+
+@bounded(500)
+@given(st.one_of(st.lists(st.one_of(st.floats(), numbers, st.sampled_from(["1", None, True])),
+                          max_size=6),
+                 st.sampled_from([None, "abcd", 4, b"1234", np.zeros(4), np.zeros((2, 2)),
+                                  {"a": 1}])))
+def check_messages_take_four_finite_numbers_and_refuse_the_rest(data):
+    show("message", data)
+    try:
+        c = Command.go(0.5).with_message(data)
+    except (TypeError, ValueError) as e:
+        assert str(e).startswith("Command.with_message: data"), str(e)
+    else:
+        values = [float(v) for v in np.asarray(data, dtype=object).ravel()]
+        assert c.send and c.message == tuple(values) and len(values) == 4
+        assert all(map(math.isfinite, values)) and c.heading == 0.5
+
+
+# a controller's snapshot: dicts of its keys with values of the right shape or of any kind, and
+# other things
+coords = st.floats(-1e3, 1e3)
+# why: mapped, one branch of a one_of below rather than five
+anything = st.one_of(st.none(), st.floats(), st.text(max_size=3),
+                     st.sampled_from([object(), (1.0, 2.0), np.zeros((2, 3)), np.zeros(0),
+                                      []])).map(lambda v: v)
+pairs = st.one_of(st.lists(st.tuples(coords, coords), max_size=4),
+                  st.lists(st.tuples(st.floats(), st.floats()), max_size=3), anything)
+number_lists = st.one_of(st.lists(coords, max_size=5), st.lists(st.floats(), max_size=3),
+                         anything)
+grid_keys = {"x0": st.one_of(coords, anything), "y0": st.one_of(coords, anything),
+             "dx": st.one_of(st.floats(0.01, 10.0), anything),
+             "dy": st.one_of(st.floats(0.01, 10.0), anything),
+             "nx": st.one_of(st.integers(-1, 4), anything),
+             "ny": st.one_of(st.integers(-1, 4), anything),
+             "values": st.one_of(st.lists(st.lists(coords, min_size=2, max_size=2), max_size=3),
+                                 number_lists)}
+grids = st.one_of(
+    st.fixed_dictionaries({"x0": coords, "y0": coords, "dx": st.floats(0.01, 10.0),
+                           "dy": st.floats(0.01, 10.0),
+                           "values": st.lists(st.lists(coords, min_size=2, max_size=2),
+                                              min_size=1, max_size=3)},
+                          optional={"nx": st.integers(1, 3), "ny": st.integers(1, 3)}),
+    st.fixed_dictionaries({}, optional={**grid_keys, "cells": anything}), anything)
+snapshot_keys = {"points": pairs, "weights": number_lists, "path": pairs, "grid": grids,
+                 "estimate": st.one_of(st.tuples(coords, coords), number_lists)}
+snapshot_dicts = st.fixed_dictionaries({}, optional=snapshot_keys)
+
+
+@bounded(500)
+@given(snapshot_dicts)
+def check_snapshots_convert_or_name_what_is_wrong(shown):
+    from conftest import Shows
+    from plumetrace.controllers import snapshot_of
+
+    show("snapshot", shown)
+    try:
+        back = snapshot_of(Shows(shown))
+    except (TypeError, ValueError) as e:
+        assert str(e).startswith("Shows.snapshot()"), str(e)
+        return
+    assert back["points"].shape[1:] == (2,) and back["path"].shape[1:] == (2,)
+    assert back["weights"].size in (0, len(back["points"]))
+    for key in ("points", "weights", "path"):
+        assert np.all(np.isfinite(back[key]))
+    if back["grid"] is not None:
+        g = back["grid"]
+        assert g["values"].shape == (g["ny"], g["nx"]) and g["dx"] > 0 and g["dy"] > 0
+    # what comes back converts to itself
+    again = snapshot_of(Shows(back))
+    for key in ("points", "weights", "path"):
+        assert np.array_equal(again[key], back[key])
+    assert again["estimate"] == back["estimate"]
 
 
 # -- a controller's keys (Param) and its registration -------------------------------------------

@@ -348,6 +348,101 @@ def test_discrete_actions_other_than_an_index_in_range_are_refused(action, error
 def test_meander_keys_beyond_the_stability_bound_raise_naming_them():
     # issue 22, G1: each key inside its range, together they made the wind, and so the
     # observations, NaN; the environment refuses them as the command does
-    with pytest.raises(pt.ConfigError, match="wind.meander_gain.*unstable"):
-        PlumeEnv(wind__model="meander", wind__meander_gain=10, wind__meander_bandwidth=100,
-                 wind__meander_damping=10)
+    with pytest.raises(pt.ConfigError, match="meander.gain.*unstable"):
+        PlumeEnv(wind__model="meander", meander__gain=10, meander__bandwidth=100,
+                 meander__damping=10)
+
+
+def test_the_meander_keys_old_names_still_work_and_warn_naming_the_new_ones(capfd):
+    # until the next version: wind.meander_gain is meander.gain, said on stderr (issue 24)
+    s = pt.Scenario(wind__model="meander", wind__meander_gain=0.05, wind__meander_nx=9)
+    assert (s["meander.gain"], s["meander.nx"]) == (0.05, 9)
+    assert "meander_gain" not in s.to_toml()
+    err = capfd.readouterr().err
+    assert "wind.meander_gain is deprecated: write meander.gain" in err
+    assert "wind.meander_nx is deprecated: write meander.nx" in err
+
+
+# -- issue 24: what the environment observes, where it starts, declaring -----------------------
+
+def _episode(env, seed, actions):
+    """The observations (and the last info) of an episode under a list of actions."""
+    obs, info = env.reset(seed=seed)
+    seen = [obs]
+    for action in actions:
+        obs, _, terminated, truncated, info = env.step(action)
+        seen.append(obs)
+        if terminated or truncated:
+            break
+    return np.array(seen), info
+
+
+def test_a_concentration_observation_is_the_reading_the_binary_one_thresholds():
+    binary = PlumeEnv(decision_interval=1, wind_every_step=False)
+    env = PlumeEnv(decision_interval=1, wind_every_step=False, observation="concentration")
+    space = env.observation_space
+    assert env.observation == "concentration" and binary.observation == "binary"
+    assert space.low[0] == 0.0 and space.high[0] == np.inf and binary.observation_space.high[0] == 1
+    assert np.array_equal(space.low[1:], binary.observation_space.low[1:])
+    assert np.array_equal(space.high[1:], binary.observation_space.high[1:])
+    # the same actions take the same path; only value 0 differs: the reading, not its test
+    actions = [0.0] * 300 + [1.5] * 100 + [-1.0] * 200
+    c, _ = _episode(env, 4, actions)
+    b, _ = _episode(binary, 4, actions)
+    assert c.shape == b.shape and np.array_equal(c[:, 1:], b[:, 1:])
+    assert all(o in space for o in c) and np.all(np.isfinite(c))
+    threshold = env.config["odor"]["threshold"]
+    clear = np.abs(c[:, 0] - threshold) > 1e-4 * threshold  # float32 rounding at the threshold
+    assert clear.sum() > 0.99 * len(c) and set(b[:, 0]) == {0.0, 1.0}
+    assert np.array_equal(b[clear, 0] == 1.0, c[clear, 0] >= threshold)
+
+
+def test_a_first_order_sensor_observed_through_the_environment_lags_the_ideal_one():
+    actions = [0.0] * 400
+    ideal, _ = _episode(PlumeEnv(decision_interval=1, observation="concentration"), 4, actions)
+    env = PlumeEnv(decision_interval=1, observation="concentration", odor__model="first-order",
+                   first_order__noise=20.0)
+    lagged, _ = _episode(env, 4, actions)
+    assert np.all(np.isfinite(lagged)) and all(o in env.observation_space for o in lagged)
+    assert np.array_equal(lagged[:, 1:5], ideal[:, 1:5])  # the same path
+    # a first-order response smooths the filaments' spikes: a smaller spread of the reading
+    assert np.std(np.diff(lagged[:, 0])) < 0.5 * np.std(np.diff(ideal[:, 0]))
+    # the binary odor is its threshold test: value 7 of a one-step decision is that 0 or 1
+    threshold = env.config["odor"]["threshold"]
+    clear = np.abs(lagged[1:, 0] - threshold) > 1e-4 * threshold
+    assert np.array_equal((lagged[1:, 7] == 1.0)[clear], (lagged[1:, 0] >= threshold)[clear])
+
+
+def test_an_episode_starts_where_the_run_of_its_seed_and_trial_is_released():
+    env = PlumeEnv(start__region="rectangle", start__heading="random")
+    starts = set()
+    for trial in range(3):
+        _, info = env.reset(seed=6, options={"trial": trial})
+        run = pt.run(seed=6, trial=trial, start__region="rectangle", start__heading="random",
+                     supervisor__timeout=0.1)
+        t = run["trajectory"]
+        assert info["pose"] == (t["x"][0], t["y"][0], t["heading"][0])
+        x, y, _ = info["pose"]
+        assert 11.0 <= x <= 15.5 and -1.5 <= y <= 1.5  # 10 to 14.5 m downwind of the source
+        starts.add(info["pose"])
+    assert len(starts) == 3
+
+
+def test_the_environment_declares_the_source_with_a_command():
+    for offset, outcome in ((0.2, "success"), (1.0, "wrong_declaration")):
+        env = PlumeEnv(supervisor__success="declare")
+        env.reset(seed=1)
+        # the source is 14.5 m straight ahead of the release pose (odometry frame)
+        obs, reward, terminated, truncated, info = env.step(Command.declare_source(14.5 + offset,
+                                                                                   0.0))
+        assert terminated and not truncated and info["outcome"] == outcome
+        assert reward == (1.0 if outcome == "success" else 0.0)
+        assert info["result"]["declaration_error"] == pytest.approx(offset)
+
+
+def test_observation_options_and_teams_the_environment_cannot_drive_are_refused():
+    for bad in ("concentraton", "Binary", 1, None):
+        with pytest.raises(ValueError, match=f"observation must be one of .*{bad!r}"):
+            PlumeEnv(observation=bad)
+    with pytest.raises(ValueError, match="team.count = 2: PlumeEnv drives one robot"):
+        PlumeEnv(team__count=2)

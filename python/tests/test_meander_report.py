@@ -31,7 +31,7 @@ def sweep(name, title, key, label, table):
     points = [point([v, g], s) for v, row in table.items() for g, s in zip(gains, row)]
     return {"name": name, "title": title, "points": points,
             "axes": [{"key": key, "label": label, "values": list(table)},
-                     {"key": "wind.meander_gain", "label": "gain", "values": gains}]}
+                     {"key": "meander.gain", "label": "gain", "values": gains}]}
 
 
 def write(tmp_path, sweeps):
@@ -103,7 +103,7 @@ def test_a_sweep_without_a_strength_axis_is_refused(tmp_path):
     bad = sweep("M", "algorithms", "controller.algorithm", "algorithm", {"casting": [1, 2, 3]})
     bad["axes"][1]["key"] = "sim.dt"
     out = write(tmp_path, [bad])
-    with pytest.raises(report.MeanderReportError, match="wind.meander_gain"):
+    with pytest.raises(report.MeanderReportError, match="meander.gain"):
         report.build_report(out)
     assert report.main([str(tmp_path / "nowhere")]) == 2
 

@@ -19,6 +19,19 @@ std::string format_number(double value) {
   return s;
 }
 
+std::string bound_text(double value) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  std::string s(buf);
+  const auto e = s.find('e');
+  if (e == std::string::npos) return s;
+  // 1e+07 -> 1e7, 1.3e-06 -> 1.3e-6
+  std::string exponent = s.substr(e + 1);
+  const bool negative = exponent[0] == '-';
+  exponent.erase(0, exponent.find_first_not_of("+-0"));
+  return s.substr(0, e + 1) + (negative ? "-" : "") + exponent;
+}
+
 std::string format_value(const ConfigValue& value) {
   if (const auto* d = std::get_if<double>(&value)) return format_number(*d);
   if (const auto* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);

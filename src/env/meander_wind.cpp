@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
+#include "plumetrace/core/errors.hpp"
 #include "wind_loops.hpp"
 
 namespace plumetrace {
@@ -138,17 +140,18 @@ void step(const ColouredNoiseTransition& t, ColouredNoiseState& s, Rng& rng) {
   s.rate = rate;
 }
 
-MeanderWind::MeanderWind(const WindParams& params, const WindRegion& region, Rng rng)
-    : params_(params.meander),
+MeanderWind::MeanderWind(const MeanderParams& params, const Vec3& mean, const WindRegion& region,
+                         Rng rng)
+    : params_(params),
       region_(region),
-      mean_(params.velocity),
+      mean_(mean),
       rng_(rng),
-      nx_(params.meander.nx),
-      ny_(params.meander.ny),
+      nx_(params.nx),
+      ny_(params.ny),
       inv_dx_((nx_ - 1) / (region.x_max - region.x_min)),
       inv_dy_((ny_ - 1) / (region.y_max - region.y_min)),
-      uniform_(params.meander.gain == 0.0),
-      noise_params_{params.meander.gain, params.meander.damping, params.meander.bandwidth} {
+      uniform_(steady(params)),
+      noise_params_{params.gain, params.damping, params.bandwidth} {
   for (ColouredNoiseState& n : noise_) n = stationary_coloured_noise(noise_params_, rng_);
   const std::size_t nodes = static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_);
   u_.assign(nodes, 0.0);
@@ -220,6 +223,53 @@ std::pair<double, double> MeanderWind::max_speeds(const MeanderParams& params,
   return {params.kx / dx, params.ky / dy};
 }
 
+// why: the grid's update must stay bounded for every accepted combination of the keys (issue
+// 22, G1: gain 10, bandwidth 100, damping 10 made the wind NaN). Both bounds of docs/model.md
+// section 3.1 are checked at the mean wind plus 4 standard deviations of the boundary noise: the
+// cell Peclet bound, without which centred differences overshoot and grow, and the substeps
+// the time step needs, which bound the cost
+void MeanderWind::check(const MeanderParams& m, const WindContext& context) {
+  const double spread = 4.0 * std::sqrt(coloured_noise_variance({m.gain, m.damping, m.bandwidth}));
+  const double u_max = std::abs(context.mean.x) + spread;
+  const double v_max = std::abs(context.mean.y) + spread;
+  const std::string noise = "meander.gain, meander.damping, meander.bandwidth";
+  const auto [u_bound, v_bound] = max_speeds(m, context.region);
+  const bool inside = m.gain > 0.0 && m.nx >= 3 && m.ny >= 3;  // else no node is computed
+  const auto unstable = [&](const char* axis, const std::string& keys, double speed, double bound) {
+    throw ConfigError(
+        keys + ": the meandering wind would be unstable: its speed along " + axis + " reaches " +
+        bound_text(speed) +
+        " m/s (the mean wind plus 4 standard deviations of the "
+        "boundary noise, 4 G sqrt(omega / (4 zeta)) = " +
+        bound_text(spread) + " m/s), above the " + bound_text(bound) +
+        " m/s its grid carries (2 D / spacing, D = K / "
+        "2; docs/model.md section 3.1): lower the gain or the bandwidth, raise the damping or " +
+        "the diffusivity, or add nodes");
+  };
+  if (inside && !(u_max <= u_bound)) {
+    unstable("x", noise + ", wind.vx, meander.kx, meander.nx", u_max, u_bound);
+  }
+  if (inside && !(v_max <= v_bound)) {
+    unstable("y", noise + ", wind.vy, meander.ky, meander.ny", v_max, v_bound);
+  }
+  const double substeps = std::ceil(context.dt / max_substep(m, context.region, u_max, v_max));
+  if (!(substeps <= kMaxWindSubsteps)) {
+    throw ConfigError(
+        "meander.kx, meander.ky, meander.nx, meander.ny, meander.gain: the meandering wind's "
+        "grid would need " +
+        bound_text(substeps) + " substeps per step of sim.dt to stay stable (at most " +
+        bound_text(kMaxWindSubsteps) +
+        "): lower the diffusivities, the node counts, the gain or sim.dt");
+  }
+}
+
+std::string MeanderWind::identity(const MeanderParams&, const WindRegion& region) {
+  return "region.x_min=" + format_number(region.x_min) +
+         "\nregion.x_max=" + format_number(region.x_max) +
+         "\nregion.y_min=" + format_number(region.y_min) +
+         "\nregion.y_max=" + format_number(region.y_max) + "\n";
+}
+
 void MeanderWind::step(double dt) {
   // the boundary: the corner noise advanced exactly over dt, the edges linear between corners
   if (dt != transition_dt_) {
@@ -242,7 +292,7 @@ void MeanderWind::step(double dt) {
     v_max = b > v_max ? b : v_max;
   }
   // why: a field gone infinite (which stays so) takes a bounded number of substeps, not 1 / 0;
-  // validate() keeps a scenario's field within kMaxWindSubsteps at 4 standard deviations
+  // check() (validate) keeps a scenario's field within kMaxWindSubsteps at 4 standard deviations
   const double n = std::ceil(dt / max_substep(params_, region_, u_max, v_max));
   substeps_ = n >= 1.0 ? static_cast<int>(std::min(n, 1e4)) : 1;
   const double h = dt / substeps_;

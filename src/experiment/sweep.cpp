@@ -89,7 +89,7 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
   const auto count = static_cast<std::size_t>(grid_points(def));
   for (const auto& o : overrides) {
     for (const auto& axis : def.axes) {
-      if (o.key == axis.key) {
+      if (current_key(o.key) == current_key(axis.key)) {
         // why: a preset file's setting names its file, a --set its option; one without an
         // origin (Python's keyword arguments) is named by its key alone
         const std::string from = o.origin.empty()      ? ""
@@ -128,10 +128,14 @@ ExpandedSweep expand_sweep(const SweepDef& def, const std::vector<Setting>& over
           {def.axes[a].key, v, false, where + ": axis " + def.axes[a].key, Layer::kAxis});
     }
     point.scenario = build_scenario(settings);
-    point.config_hash = hash_text(scenario_to_toml(point.scenario, ConfigKeys::kOfTheRun));
+    point.config_hash = scenario_hash(point.scenario);
     out.points.push_back(std::move(point));
   }
   return out;
+}
+
+std::string scenario_hash(const Scenario& scenario) {
+  return hash_text(canonical_config(scenario, ConfigKeys::kOfTheRun));
 }
 
 std::string plume_key(const Scenario& scenario) {
@@ -140,14 +144,17 @@ std::string plume_key(const Scenario& scenario) {
   p.sim = scenario.sim;
   p.source = scenario.source;
   p.source.solid_radius = 0.0;  // an obstacle for the robot only
-  p.wind = scenario.wind;
   p.plume = scenario.plume;
-  p.arena.x_max = scenario.arena.x_max;
-  if (scenario.wind.model != WindModel::kConstant) {
-    // a wind field other than the constant one covers the whole arena (its grid)
-    p.arena = scenario.arena;
-  }
-  return hash_text(scenario_to_toml(p, ConfigKeys::kOfTheRun));
+  p.arena.x_max = scenario.arena.x_max;  // where odor leaves
+  // the wind: its model, the mean wind and the params of that model alone (the others' stay
+  // at their defaults), and what else it depends on (its identity hook: a grid over the arena)
+  const WindRegistry& winds = wind_field_registry();
+  const auto model = static_cast<std::size_t>(scenario.wind.model);
+  p.wind.model = scenario.wind.model;
+  p.wind.velocity = scenario.wind.velocity;
+  p.wind.params.at(winds, model) = scenario.wind.params.at(winds, model);
+  return hash_text(canonical_config(p, ConfigKeys::kOfTheRun) +
+                   wind_identity(scenario.wind, wind_region(scenario.arena)));
 }
 
 namespace {

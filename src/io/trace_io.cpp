@@ -361,18 +361,12 @@ double number_or_nan(const json& v) {
   return v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();
 }
 
-// the true wind of a trace that did not record it (format 1): the scenario's where its wind
-// blows the same everywhere and always, unknown (NaN) otherwise. why: a switch, so that a wind
-// model added later (-Wswitch) is named here
+// the true wind of a trace that did not record it (format 1): the scenario's mean wind where its
+// field is steady (the mean everywhere and always: its registration says), unknown (NaN)
+// otherwise
 Vec2 unrecorded_true_wind(const WindParams& wind) {
-  const Vec2 mean{wind.velocity.x, wind.velocity.y};
-  switch (wind.model) {
-    case WindModel::kConstant:
-      return mean;
-    case WindModel::kMeander:
-      return wind.meander.gain == 0.0 ? mean : Vec2{NAN, NAN};
-  }
-  return {NAN, NAN};
+  if (!wind_is_steady(wind)) return {NAN, NAN};
+  return {wind.velocity.x, wind.velocity.y};
 }
 
 // one robot's steps (TraceStep::fields) from their columns; `unrecorded` is the true wind of a

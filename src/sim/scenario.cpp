@@ -5,10 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
-
-#include "plumetrace/env/meander_wind.hpp"
 
 namespace plumetrace {
 
@@ -24,20 +25,6 @@ double unscale(double si, double scale) {
     if (d * scale == si) return d;
   }
   return si / scale;
-}
-
-// a bound or count as people write it: 0.5, 1200, 1e7, 1.3e-6
-std::string bound_text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  std::string s(buf);
-  const auto e = s.find('e');
-  if (e == std::string::npos) return s;
-  // 1e+07 -> 1e7, 1.3e-06 -> 1.3e-6
-  std::string exponent = s.substr(e + 1);
-  const bool negative = exponent[0] == '-';
-  exponent.erase(0, exponent.find_first_not_of("+-0"));
-  return s.substr(0, e + 1) + (negative ? "-" : "") + exponent;
 }
 
 std::string range_text(const NumberSpec& f) {
@@ -186,8 +173,9 @@ class Collector final : public FieldVisitor {
 // sets one key (the first of that name) from a typed value or text
 class Setter final : public FieldVisitor {
  public:
-  Setter(std::string_view key, const ConfigValue& value, bool text)
-      : key_(key), value_(value), text_(text) {}
+  // `key` is matched, `shown` (the key as written: an old name of it) named in errors
+  Setter(std::string_view key, std::string_view shown, const ConfigValue& value, bool text)
+      : key_(key), shown_(shown), value_(value), text_(text) {}
   bool found = false;
 
  private:
@@ -198,36 +186,37 @@ class Setter final : public FieldVisitor {
   }
   void number(std::string_view key, double& value, std::string_view,
               const NumberSpec& spec) override {
-    if (match(key)) value = number_value(std::string(key_), spec, value_, text_);
+    if (match(key)) value = number_value(shown_, spec, value_, text_);
   }
   void integer(std::string_view key, int& value, std::string_view,
                const IntegerSpec& spec) override {
-    if (match(key)) value = integer_value(std::string(key_), spec, value_, text_);
+    if (match(key)) value = integer_value(shown_, spec, value_, text_);
   }
   void choice(std::string_view key, ChoiceRef value, std::string_view,
               const Choices& names) override {
-    if (match(key)) value.set(choice_value(std::string(key_), names, value_, text_));
+    if (match(key)) value.set(choice_value(shown_, names, value_, text_));
   }
   void derived_number(std::string_view key, double& value, std::string_view, const NumberSpec& spec,
                       bool& automatic) override {
     if (!match(key)) return;
     automatic = is_auto(value_, text_);
-    if (!automatic) value = number_value(std::string(key_), spec, value_, text_, kOrAuto);
+    if (!automatic) value = number_value(shown_, spec, value_, text_, kOrAuto);
   }
   void derived_integer(std::string_view key, int& value, std::string_view, const IntegerSpec& spec,
                        bool& automatic) override {
     if (!match(key)) return;
     automatic = is_auto(value_, text_);
-    if (!automatic) value = integer_value(std::string(key_), spec, value_, text_, kOrAuto);
+    if (!automatic) value = integer_value(shown_, spec, value_, text_, kOrAuto);
   }
   void input_number(std::string_view key, double& value, std::string_view, const NumberSpec& spec,
                     bool& automatic) override {
     if (!match(key)) return;
-    value = number_value(std::string(key_), spec, value_, text_);
+    value = number_value(shown_, spec, value_, text_);
     automatic = true;
   }
 
   std::string_view key_;
+  std::string shown_;
   const ConfigValue& value_;
   bool text_;
 };
@@ -313,8 +302,38 @@ class KeyLister final : public FieldVisitor {
   throw ConfigError(msg);
 }
 
-void set(Scenario& scenario, std::string_view key, const ConfigValue& value, bool text) {
-  Setter setter(key, value, text);
+// the keys renamed after version 0.4.0, still accepted under their old names until the next
+// version: the meandering wind's keys moved to its own table (issue 24)
+constexpr RenamedKey kRenamedKeys[] = {
+    {"wind.meander_gain", "meander.gain", "0.4.0"},
+    {"wind.meander_damping", "meander.damping", "0.4.0"},
+    {"wind.meander_bandwidth", "meander.bandwidth", "0.4.0"},
+    {"wind.meander_kx", "meander.kx", "0.4.0"},
+    {"wind.meander_ky", "meander.ky", "0.4.0"},
+    {"wind.meander_nx", "meander.nx", "0.4.0"},
+    {"wind.meander_ny", "meander.ny", "0.4.0"},
+};
+
+// the current name of `key`; an old name is said on stderr, once per process and name, with
+// `origin` (a file, "--set") where known
+std::string_view current_key_warned(std::string_view key, const std::string& origin) {
+  const std::string_view current = current_key(key);
+  if (current == key) return key;
+  static std::mutex mutex;
+  static std::set<std::string, std::less<>> warned;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (warned.emplace(key).second) {
+    const RenamedKey& r = *std::find_if(std::begin(kRenamedKeys), std::end(kRenamedKeys),
+                                        [&](const RenamedKey& k) { return k.old_key == key; });
+    std::fprintf(stderr, "plumetrace: warning: %s%s\n",
+                 origin.empty() ? "" : (origin + ": ").c_str(), renamed_key_warning(r).c_str());
+  }
+  return current;
+}
+
+void set(Scenario& scenario, std::string_view key, const ConfigValue& value, bool text,
+         const std::string& origin = "") {
+  Setter setter(current_key_warned(key, origin), key, value, text);
   scenario.fields(setter);
   if (!setter.found) unknown_key(scenario, key);
 }
@@ -366,10 +385,26 @@ void set_field_text(Scenario& scenario, std::string_view key, std::string_view t
   set(scenario, key, std::string(text), true);
 }
 
+std::span<const RenamedKey> renamed_keys() { return kRenamedKeys; }
+
+std::string_view current_key(std::string_view key) {
+  for (const RenamedKey& r : kRenamedKeys) {
+    if (r.old_key == key) return r.new_key;
+  }
+  return key;
+}
+
+std::string renamed_key_warning(const RenamedKey& key) {
+  return "config key " + std::string(key.old_key) + " is deprecated: write " +
+         std::string(key.new_key) + " (renamed after version " + std::string(key.after) +
+         "; the old name is accepted until the next version)";
+}
+
 ConfigValue get_field(const Scenario& scenario, std::string_view key) {
   std::optional<ConfigValue> value;
+  const std::string_view current = current_key_warned(key, "");
   for_each_value(scenario, [&](const FieldValue& f) {
-    if (!value && is_key(key, f.table, f.name)) value = f.value;
+    if (!value && is_key(current, f.table, f.name)) value = f.value;
   });
   if (!value) unknown_key(scenario, key);
   return *value;
@@ -381,49 +416,6 @@ void for_each_value(const Scenario& scenario, const std::function<void(const Fie
 }
 
 namespace {
-
-// why: the grid's update must stay bounded for every accepted combination of the keys (issue
-// 22, G1: gain 10, bandwidth 100, damping 10 made the wind NaN). Both bounds of docs/model.md
-// section 3.1 are checked at the mean wind plus 4 standard deviations of the boundary noise: the
-// cell Peclet bound, without which centred differences overshoot and grow, and the substeps
-// the time step needs, which bound the cost
-void check_meander(const WindParams& wind, const WindRegion& region, double dt) {
-  const MeanderParams& m = wind.meander;
-  const double spread = 4.0 * std::sqrt(coloured_noise_variance({m.gain, m.damping, m.bandwidth}));
-  const double u_max = std::abs(wind.velocity.x) + spread;
-  const double v_max = std::abs(wind.velocity.y) + spread;
-  const std::string noise = "wind.meander_gain, wind.meander_damping, wind.meander_bandwidth";
-  const auto [u_bound, v_bound] = MeanderWind::max_speeds(m, region);
-  const bool inside = m.gain > 0.0 && m.nx >= 3 && m.ny >= 3;  // else no node is computed
-  const auto unstable = [&](const char* axis, const std::string& keys, double speed, double bound) {
-    throw ConfigError(
-        keys + ": the meandering wind would be unstable: its speed along " + axis + " reaches " +
-        bound_text(speed) +
-        " m/s (the mean wind plus 4 standard deviations of the "
-        "boundary noise, 4 G sqrt(omega / (4 zeta)) = " +
-        bound_text(spread) + " m/s), above the " + bound_text(bound) +
-        " m/s its grid carries (2 D / spacing, D = K / "
-        "2; docs/model.md section 3.1): lower the gain or the bandwidth, raise the damping or " +
-        "the diffusivity, or add nodes");
-  };
-  if (inside && !(u_max <= u_bound)) {
-    unstable("x", noise + ", wind.vx, wind.meander_kx, wind.meander_nx", u_max, u_bound);
-  }
-  if (inside && !(v_max <= v_bound)) {
-    unstable("y", noise + ", wind.vy, wind.meander_ky, wind.meander_ny", v_max, v_bound);
-  }
-  const double substeps = std::ceil(dt / MeanderWind::max_substep(m, region, u_max, v_max));
-  if (!(substeps <= kMaxWindSubsteps)) {
-    throw ConfigError(
-        "wind.meander_kx, wind.meander_ky, wind.meander_nx, wind.meander_ny, "
-        "wind.meander_gain: the meandering wind's grid would need " +
-        bound_text(substeps) + " substeps per step of sim.dt to stay stable (at most " +
-        bound_text(kMaxWindSubsteps) +
-        "): lower the diffusivities, the node counts, the gain or sim.dt");
-  }
-}
-
-}  // namespace
 
 // why: a team or a start region that cannot be placed is bad input, found before any run (issue
 // 24, item 8); what only a run can tell (a region mostly outside odor) is said by the run
@@ -508,6 +500,8 @@ void check_team_start(const Scenario& scenario) {
   }
 }
 
+}  // namespace
+
 void validate(const Scenario& scenario) {
   // every key within its own range
   Validator validator;
@@ -568,7 +562,7 @@ void validate(const Scenario& scenario) {
                   " m/s and the arena's length: raise wind.vx or set sim.warmup)"
             : "");
   steps("supervisor.timeout", scenario.supervisor.timeout, "");
-  if (scenario.wind.model == WindModel::kMeander) check_meander(scenario.wind, wind_region(a), dt);
+  check_wind_field(scenario.wind, wind_region(a), dt);
   const double per_step = scenario.plume.release_rate * dt;
   if (per_step > kMaxReleasePerStep) {
     throw ConfigError("plume.release_rate: must release at most " + bound_text(kMaxReleasePerStep) +
@@ -591,11 +585,7 @@ namespace {
 
 void apply(Scenario& scenario, const Setting& s) {
   try {
-    if (s.text) {
-      set_field_text(scenario, s.key, std::get<std::string>(s.value));
-    } else {
-      set_field(scenario, s.key, s.value);
-    }
+    set(scenario, s.key, s.value, s.text, s.origin);
   } catch (const ConfigError& e) {
     if (s.origin.empty()) throw;
     throw ConfigError(s.origin + ": " + e.what());
@@ -763,7 +753,11 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario) {
   return out;
 }
 
-std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
+namespace {
+
+// calls f for every key of `keys` (ConfigKeys) in file order
+void for_each_value_of(const Scenario& scenario, ConfigKeys keys,
+                       const std::function<void(const FieldValue&)>& f) {
   // why: the keys of a controller registered outside the library (examples/zigzag, a Python
   // one) are in a run's config only when it is the one that runs, so that registering it
   // changes neither the stored config nor the hash of a run of any other controller (a store
@@ -775,12 +769,19 @@ std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
   for (std::size_t i = builtins; keys == ConfigKeys::kOfTheRun && i < registry.size(); ++i) {
     if (i != chosen) unused_tables.push_back(registry[i].table);
   }
+  for_each_value(scenario, [&](const FieldValue& v) {
+    if (std::find(unused_tables.begin(), unused_tables.end(), v.table) == unused_tables.end()) {
+      f(v);
+    }
+  });
+}
+
+}  // namespace
+
+std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
   std::ostringstream out;
   std::string table;
-  for_each_value(scenario, [&](const FieldValue& f) {
-    if (std::find(unused_tables.begin(), unused_tables.end(), f.table) != unused_tables.end()) {
-      return;
-    }
+  for_each_value_of(scenario, keys, [&](const FieldValue& f) {
     if (f.table != table) {
       out << (table.empty() ? "" : "\n") << "[" << f.table << "]\n";
       table = f.table;
@@ -791,6 +792,15 @@ std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys) {
     out << f.name << " = " << text << "  # " << f.help << "\n";
   });
   return out.str();
+}
+
+std::string canonical_config(const Scenario& scenario, ConfigKeys keys) {
+  std::string out;
+  for_each_value_of(scenario, keys, [&](const FieldValue& f) {
+    out.append(f.table).append(".").append(f.name).append("=").append(format_value(f.value));
+    out += '\n';
+  });
+  return out;
 }
 
 }  // namespace plumetrace

@@ -22,7 +22,10 @@ from plumetrace.report.figures import _new_figure, _save
 from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
 from plumetrace.report.wording import change, difference, points
 
-STRENGTH_KEY = "wind.meander_gain"
+STRENGTH_KEY = "meander.gain"
+# the strength axis's key in results of sweeps written before it was renamed (until the next
+# version, as the core accepts the old name)
+OLD_STRENGTH_KEY = "wind.meander_gain"
 COLORS = ("#4e79a7", "#f28e2b", "#59a14f", "#e15759", "#76b7b2", "#b07aa1")
 # The smallest difference of success rates the statements need: they state directions only
 # ("degrades least", "hurts", "helps"), so m = 0, where the single-threshold rule and the rule
@@ -67,7 +70,7 @@ class Curve:
 
 def curves(sweep: dict) -> tuple:
     """(label of the other axis, its key, [Curve]) of a sweep with a strength axis."""
-    keys = [a["key"] for a in sweep["axes"]]
+    keys = [STRENGTH_KEY if a["key"] == OLD_STRENGTH_KEY else a["key"] for a in sweep["axes"]]
     if STRENGTH_KEY not in keys or len(keys) != 2:
         raise MeanderReportError(f"sweep {sweep['name']}: needs two axes, one of them "
                                  f"{STRENGTH_KEY} (has {', '.join(keys)})")

@@ -17,6 +17,10 @@ using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
 /// Formats a number so it reads back to the same double ("inf" for infinity).
 std::string format_number(double value);
 
+/// Formats a number as messages write a bound or a count, to 6 significant digits: 0.5, 1200,
+/// 1e7, 1.3e-6.
+std::string bound_text(double value);
+
 /// Formats a config value for display.
 std::string format_value(const ConfigValue& value);
 

@@ -81,18 +81,39 @@ class AnyParams {
   std::unique_ptr<Base> held_;
 };
 
-/// One family of interchangeable models chosen by name in a config: the controllers, and the
-/// wind and odor fields once they have more than one model. An entry is a model type with its
-/// params struct: its name (a value of the family's choice key), the config table of its params
-/// (the name with '-' written '_'), its default params and its factory. Entries keep the order
-/// they were added in, which is the order of their tables in a resolved config: the library's
-/// own first, then those a program registers before main (see RegisterController).
+/// No hooks: what an entry of a family carries when its interface names none.
+struct NoHooks {};
+
+/// The hooks an entry of the family of `Interface` carries besides its factory (Registry::Entry):
+/// `Interface::Hooks` where the interface names them (WindField: its checks, steadiness and
+/// identity), else NoHooks.
+template <class Interface>
+struct RegistryHooks {
+  using type = NoHooks;  ///< none
+};
+/// The hooks of a family whose interface names them.
+template <class Interface>
+requires requires { typename Interface::Hooks; }
+struct RegistryHooks<Interface> {
+  using type = typename Interface::Hooks;  ///< the interface's
+};
+
+/// One family of interchangeable models chosen by name in a config: the controllers and the wind
+/// fields, and the odor fields once they have more than one model. An entry is a model type with
+/// its params struct: its name (a value of the family's choice key), the config table of its
+/// params (the name with '-' written '_'), its default params, its factory and the family's
+/// hooks (RegistryHooks: what the rest of the program asks of a model besides making it, so
+/// that no other code needs to know the model). Entries keep the order they were added in,
+/// which is the order of their tables in a resolved config: the library's own first, then those
+/// a program registers before main (see RegisterController).
 template <class Interface, class... Args>
 class Registry {
  public:
   /// Makes a model from its params (an AnyParams holding its params struct) and the family's
   /// arguments.
   using Make = std::unique_ptr<Interface> (*)(const AnyParams& params, Args... args);
+  /// What an entry carries besides its factory (RegistryHooks).
+  using Hooks = typename RegistryHooks<Interface>::type;
 
   /// One registered model.
   struct Entry {
@@ -100,29 +121,33 @@ class Registry {
     std::string table;   ///< config table of its params, e.g. "surge_spiral"
     AnyParams defaults;  ///< its params struct with their in-class defaults
     Make make;           ///< its factory
+    Hooks hooks{};       ///< the family's hooks (RegistryHooks), each empty unless given
   };
 
-  /// Adds Model, made as Model(const Params&, args...), under `name`; returns its index. Throws
-  /// std::invalid_argument when the name or its table is taken.
+  /// Adds Model, made as Model(const Params&, args...), under `name` with `hooks`; returns its
+  /// index. Throws std::invalid_argument when the name or its table is taken.
   template <class Model, class Params>
-  std::size_t add(std::string name) {
-    return add(std::move(name), AnyParams(Params{}),
-               [](const AnyParams& p, Args... args) -> std::unique_ptr<Interface> {
-                 return std::make_unique<Model>(p.get<Params>(), args...);
-               });
+  std::size_t add(std::string name, Hooks hooks = {}) {
+    return add(
+        std::move(name), AnyParams(Params{}),
+        [](const AnyParams& p, Args... args) -> std::unique_ptr<Interface> {
+          return std::make_unique<Model>(p.get<Params>(), args...);
+        },
+        std::move(hooks));
   }
 
   /// Adds a model whose params are only known at run time (a controller written in Python):
   /// `defaults` holds its params struct, `make` builds it from a copy of them. Returns its index;
   /// throws std::invalid_argument when the name or its table is taken.
-  std::size_t add(std::string name, AnyParams defaults, Make make) {
+  std::size_t add(std::string name, AnyParams defaults, Make make, Hooks hooks = {}) {
     std::string table = table_of(name);
     for (const Entry& e : entries_) {
       if (e.name == name || e.table == table) {
         throw std::invalid_argument("'" + name + "' is registered twice");
       }
     }
-    entries_.push_back({std::move(name), std::move(table), std::move(defaults), make});
+    entries_.push_back(
+        {std::move(name), std::move(table), std::move(defaults), make, std::move(hooks)});
     return entries_.size() - 1;
   }
 
@@ -152,6 +177,25 @@ class Registry {
       if (entries_[i].name == name) return i;
     }
     return entries_.size();
+  }
+  /// The entry named `name`; throws std::invalid_argument naming `what` (the family, e.g. "wind
+  /// model") when there is none. What every factory of a family calls: an unknown name is an
+  /// error, never another model.
+  const Entry& at(std::string_view name, std::string_view what) const {
+    const std::size_t i = find(name);
+    if (i == entries_.size()) {
+      throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(name) + "'");
+    }
+    return entries_[i];
+  }
+  /// Entry i; throws std::invalid_argument naming `what` (the family) when there is none (an
+  /// enum value cast from a number no entry has).
+  const Entry& at(std::size_t i, std::string_view what) const {
+    if (i >= entries_.size()) {
+      throw std::invalid_argument("unknown " + std::string(what) + " number " + std::to_string(i) +
+                                  " (" + std::to_string(entries_.size()) + " registered)");
+    }
+    return entries_[i];
   }
   /// Index of the entry whose params struct is P; throws std::logic_error when there is none.
   template <class P>

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -11,6 +12,52 @@
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {
+
+/// The meandering wind's perturbation (wind.model = "meander", Farrell et al. 2002; docs/model.md
+/// section 3.1), in its own table: `[meander] gain = ...`. Defaults: the `meander-strong`
+/// scenario (scenarios/meander-strong.toml).
+struct MeanderParams {
+  /// Gain G of the boundary noise filter (m/s^0.5); 0: the constant wind, bit for bit. why:
+  /// 0.14 gives the centreline a 0.6 m standard deviation at the robot's start (docs/model.md
+  /// section 3.1); Farrell's G = 20 is of a time-step-dependent update and does not carry over.
+  double gain = 0.14;
+  /// Damping ratio zeta of the filter. why: Farrell et al.'s large-amplitude meander, 0.1.
+  double damping = 0.1;
+  /// Bandwidth omega (undamped natural frequency) of the filter (rad/s). why: Farrell et al.'s
+  /// large-amplitude meander, 0.2.
+  double bandwidth = 0.2;
+  /// Diffusivity K_x of the interior update (m^2/s). why: inside Farrell et al.'s [1, 30].
+  double kx = 10.0;
+  /// Diffusivity K_y of the interior update (m^2/s). why: inside Farrell et al.'s [1, 30].
+  double ky = 10.0;
+  /// Grid nodes along x, walls included. why: 1 m spacing on the default 16 m arena.
+  int nx = 17;
+  /// Grid nodes along y, walls included. why: 1.33 m spacing on the default 4 m arena; an even
+  /// count keeps a node row off the centreline y = 0, so that neighbouring filaments mostly
+  /// share a cell, which the vectorised interpolation is fastest for (docs/performance.md).
+  int ny = 4;
+
+  /// The config keys (core/config.hpp).
+  template <class V>
+  void fields(V& v) {
+    v("gain", gain, "gain G of the boundary noise (m/s^0.5); 0: the constant wind",
+      NumberSpec{.min = 0.0, .max = 10.0});
+    v("damping", damping, "damping ratio zeta of the boundary noise",
+      NumberSpec{.min = 0.0, .max = 10.0, .min_open = true});
+    v("bandwidth", bandwidth, "bandwidth omega of the boundary noise (rad/s)",
+      NumberSpec{.min = 0.0, .max = 100.0, .min_open = true});
+    v("kx", kx, "diffusivity K_x of the wind grid (m^2/s)",
+      NumberSpec{.min = 0.0, .max = 1000.0, .min_open = true});
+    v("ky", ky, "diffusivity K_y of the wind grid (m^2/s)",
+      NumberSpec{.min = 0.0, .max = 1000.0, .min_open = true});
+    v("nx", nx, "wind grid nodes along x, walls included", IntegerSpec{2, 201});
+    v("ny", ny, "wind grid nodes along y, walls included", IntegerSpec{2, 201});
+  }
+};
+
+/// The most substeps the meandering wind's grid may need per step of sim.dt: 1000. why: its cost
+/// grows with K / spacing^2 and the wind speed squared; beyond this a run would crawl.
+inline constexpr double kMaxWindSubsteps = 1000.0;
 
 /// A second-order filter driven by white noise (Farrell et al. 2002; docs/model.md section 3.1):
 /// x'' + 2 zeta omega x' + omega^2 x = G omega^2 xi(t), xi unit white noise.
@@ -59,9 +106,10 @@ void step(const ColouredNoiseTransition& transition, ColouredNoiseState& state, 
 /// interpolation (clamped to the grid outside it). The vertical wind is the mean's vz.
 class MeanderWind final : public WindField {
  public:
-  /// Builds the field over `region`, drawing the noise's first state from the stationary law;
-  /// the inside starts as the bilinear interpolation of the four corners.
-  MeanderWind(const WindParams& params, const WindRegion& region, Rng rng);
+  /// Builds the field around the mean wind `mean` (m/s) over `region`, drawing the noise's
+  /// first state from the stationary law; the inside starts as the bilinear interpolation of the
+  /// four corners.
+  MeanderWind(const MeanderParams& params, const Vec3& mean, const WindRegion& region, Rng rng);
 
   /// Advances the corner noise exactly, sets the edges, then updates the inside in
   /// `substeps()` equal substeps of Farrell's scheme (forward Euler, centred differences).
@@ -96,6 +144,17 @@ class MeanderWind final : public WindField {
   /// value outgrows the edges (docs/model.md section 3.1).
   static std::pair<double, double> max_speeds(const MeanderParams& params,
                                               const WindRegion& region);
+
+  /// Refuses params with which the grid's update could grow without bound or crawl (WindHooks::
+  /// check): both bounds of docs/model.md section 3.1 at the mean wind plus 4 standard
+  /// deviations of the boundary noise, the cell Péclet bound (max_speeds) and at most
+  /// kMaxWindSubsteps substeps per step of context.dt. Throws ConfigError naming the keys.
+  static void check(const MeanderParams& params, const WindContext& context);
+  /// True when the gain is 0: the field is then the mean wind (WindHooks::steady).
+  static bool steady(const MeanderParams& params) { return params.gain == 0.0; }
+  /// The region its grid spans (WindHooks::identity): two fields of the same keys over other
+  /// regions differ.
+  static std::string identity(const MeanderParams& params, const WindRegion& region);
 
  private:
   std::size_t index(int i, int j) const {

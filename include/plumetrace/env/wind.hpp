@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <memory>
 #include <span>
+#include <string>
 
 #include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
@@ -18,66 +19,6 @@ enum class WindModel { kConstant, kMeander };
 /// The names of the registered wind fields, in registry order: the choices of wind.model.
 Choices wind_model_names();
 
-/// The meandering wind's perturbation (wind.model = "meander", Farrell et al. 2002; docs/model.md
-/// section 3.1). Defaults: the `meander-strong` scenario (scenarios/meander-strong.toml).
-struct MeanderParams {
-  /// Gain G of the boundary noise filter (m/s^0.5); 0: the constant wind, bit for bit. why:
-  /// 0.14 gives the centreline a 0.6 m standard deviation at the robot's start (docs/model.md
-  /// section 3.1); Farrell's G = 20 is of a time-step-dependent update and does not carry over.
-  double gain = 0.14;
-  /// Damping ratio zeta of the filter. why: Farrell et al.'s large-amplitude meander, 0.1.
-  double damping = 0.1;
-  /// Bandwidth omega (undamped natural frequency) of the filter (rad/s). why: Farrell et al.'s
-  /// large-amplitude meander, 0.2.
-  double bandwidth = 0.2;
-  /// Diffusivity K_x of the interior update (m^2/s). why: inside Farrell et al.'s [1, 30].
-  double kx = 10.0;
-  /// Diffusivity K_y of the interior update (m^2/s). why: inside Farrell et al.'s [1, 30].
-  double ky = 10.0;
-  /// Grid nodes along x, walls included. why: 1 m spacing on the default 16 m arena.
-  int nx = 17;
-  /// Grid nodes along y, walls included. why: 1.33 m spacing on the default 4 m arena; an even
-  /// count keeps a node row off the centreline y = 0, so that neighbouring filaments mostly
-  /// share a cell, which the vectorised interpolation is fastest for (docs/performance.md).
-  int ny = 4;
-};
-
-/// Parameters of the wind field.
-struct WindParams {
-  /// Which field.
-  WindModel model = WindModel::kConstant;
-  /// Constant wind velocity (m/s); paper eq. 1; the mean of a meandering wind. why: 1, the
-  /// paper's "constant wind field of 1 m/s" (docs/fidelity.md, unknown 9 and "Which reading won").
-  Vec3 velocity{1.0, 0.0, 0.0};
-  /// The meandering wind's perturbation (model "meander").
-  MeanderParams meander;
-
-  /// The config keys (core/config.hpp).
-  template <class V>
-  void fields(V& v) {
-    v("model", model, "wind field", wind_model_names());
-    v("vx", velocity.x, "constant (or mean) wind velocity, x component (m/s)", kAnyNumber);
-    v("vy", velocity.y, "constant (or mean) wind velocity, y component (m/s)", kAnyNumber);
-    v("vz", velocity.z, "constant (or mean) wind velocity, z component (m/s)", kAnyNumber);
-    v("meander_gain", meander.gain,
-      "meander: gain G of the boundary noise (m/s^0.5); 0: the constant wind",
-      NumberSpec{.min = 0.0, .max = 10.0});
-    v("meander_damping", meander.damping, "meander: damping ratio zeta of the boundary noise",
-      NumberSpec{.min = 0.0, .max = 10.0, .min_open = true});
-    v("meander_bandwidth", meander.bandwidth,
-      "meander: bandwidth omega of the boundary noise (rad/s)",
-      NumberSpec{.min = 0.0, .max = 100.0, .min_open = true});
-    v("meander_kx", meander.kx, "meander: diffusivity K_x of the wind grid (m^2/s)",
-      NumberSpec{.min = 0.0, .max = 1000.0, .min_open = true});
-    v("meander_ky", meander.ky, "meander: diffusivity K_y of the wind grid (m^2/s)",
-      NumberSpec{.min = 0.0, .max = 1000.0, .min_open = true});
-    v("meander_nx", meander.nx, "meander: wind grid nodes along x, walls included",
-      IntegerSpec{2, 201});
-    v("meander_ny", meander.ny, "meander: wind grid nodes along y, walls included",
-      IntegerSpec{2, 201});
-  }
-};
-
 /// The rectangle a wind field covers (m): the arena's walls, handed over by the sim layer
 /// (make_environment), so that a field with a grid knows where it lies.
 struct WindRegion {
@@ -87,11 +28,39 @@ struct WindRegion {
   double y_max;  ///< left-hand edge (m)
 };
 
+/// What a wind field's params are checked against besides their own ranges (WindHooks::check).
+struct WindContext {
+  Vec3 mean;          ///< the mean wind: wind.vx, wind.vy, wind.vz (m/s)
+  WindRegion region;  ///< the region the field covers: the arena (m)
+  double dt;          ///< the time step it is advanced by: sim.dt (s)
+};
+
+/// What a wind field's registration carries besides its factory (Registry::Entry::hooks), so
+/// that scenario, sweep and trace code ask the registry instead of knowing the model. Each may
+/// be empty; wind_hooks<Model, Params>() fills them from the model's static members.
+struct WindHooks {
+  /// Refuses params (an AnyParams holding the model's params struct) with which the field
+  /// cannot run in `context`, throwing ConfigError naming the keys. Empty: every combination of
+  /// the keys within their ranges runs.
+  void (*check)(const AnyParams& params, const WindContext& context) = nullptr;
+  /// True when the field made from `params` is the mean wind, exactly, at every point and always
+  /// (a trace that did not record the true wind then knows it). Empty: never.
+  bool (*steady)(const AnyParams& params) = nullptr;
+  /// What the field depends on besides its keys and the mean wind, as text (`name=value`
+  /// lines): the region for a field with a grid over it, a data file's contents. The
+  /// plume-sharing key hashes it (plume_key). Empty: nothing, the field is the same over any
+  /// region.
+  std::string (*identity)(const AnyParams& params, const WindRegion& region) = nullptr;
+};
+
 /// A wind field: the air velocity at every point, now. The field carries its own state and time
 /// and advances through step(), so every reader (the plume, each wind sensor) of one field sees
 /// the same air.
 class WindField {
  public:
+  /// What a wind field's registration carries besides its factory.
+  using Hooks = WindHooks;
+
   virtual ~WindField() = default;
   /// Advances the field by dt (s).
   virtual void step(double dt) = 0;
@@ -113,32 +82,110 @@ class WindField {
   }
 };
 
+/// The constant wind's params: none besides the mean wind (wind.vx, wind.vy, wind.vz), which
+/// every wind field has.
+struct ConstantWindParams {
+  /// The config keys (core/config.hpp): none.
+  template <class V>
+  void fields(V&) {}
+};
+
 /// Laminar wind with the same velocity everywhere and always (paper eq. 1).
 class ConstantWind final : public WindField {
  public:
   /// Builds the field from its velocity (m/s).
   explicit ConstantWind(const Vec3& velocity) : velocity_(velocity) {}
-  /// Builds the field from a scenario's wind; a constant wind never draws from its stream.
-  ConstantWind(const WindParams& params, const WindRegion&, Rng) : velocity_(params.velocity) {}
+  /// Builds the field from a scenario's wind: the mean wind (m/s); a constant wind never draws
+  /// from its stream.
+  ConstantWind(const ConstantWindParams&, const Vec3& mean, const WindRegion&, Rng)
+      : velocity_(mean) {}
   /// Nothing changes.
   void step(double) override {}
   Vec3 velocity(const Vec3&) const override { return velocity_; }
   bool uniform_in_space() const override { return true; }
 
+  /// Always the mean wind (WindHooks::steady).
+  static bool steady(const ConstantWindParams&) { return true; }
+
  private:
   Vec3 velocity_;
 };
 
-/// The wind fields, chosen by wind.model: made from the scenario's WindParams, the region it
-/// covers (the arena) and the field's own random stream (Stream::kWind).
-using WindRegistry = Registry<WindField, const WindRegion&, Rng>;
+/// The hooks of wind field Model with params struct Params: each from Model's static member of
+/// the same name where it has one (`check(const Params&, const WindContext&)`,
+/// `steady(const Params&)`, `identity(const Params&, const WindRegion&)`), else empty: the
+/// model declares what it knows of itself next to its code, its registration line hands it over.
+template <class Model, class Params>
+WindHooks wind_hooks() {
+  WindHooks hooks;
+  if constexpr (requires(const Params& p, const WindContext& c) { Model::check(p, c); }) {
+    hooks.check = [](const AnyParams& p, const WindContext& c) {
+      Model::check(p.get<Params>(), c);
+    };
+  }
+  if constexpr (requires(const Params& p) { Model::steady(p); }) {
+    hooks.steady = [](const AnyParams& p) -> bool { return Model::steady(p.get<Params>()); };
+  }
+  if constexpr (requires(const Params& p, const WindRegion& r) { Model::identity(p, r); }) {
+    hooks.identity = [](const AnyParams& p, const WindRegion& r) -> std::string {
+      return Model::identity(p.get<Params>(), r);
+    };
+  }
+  return hooks;
+}
+
+/// The wind fields, chosen by wind.model: each made from its own params, the mean wind (m/s),
+/// the region it covers (the arena) and its own random stream (Stream::kWind).
+using WindRegistry = Registry<WindField, const Vec3&, const WindRegion&, Rng>;
 
 /// The registered wind fields (src/env/models.cpp: one line each).
 WindRegistry& wind_field_registry();
 
+/// Parameters of the wind field: which one, the mean wind, and the params of every registered
+/// field, each in its own table (`wind.model = "meander"`, `[meander] gain = ...`).
+struct WindParams {
+  /// Which field.
+  WindModel model = WindModel::kConstant;
+  /// Constant wind velocity (m/s); paper eq. 1; the mean of every wind field. why: 1, the
+  /// paper's "constant wind field of 1 m/s" (docs/fidelity.md, unknown 9 and "Which reading won").
+  Vec3 velocity{1.0, 0.0, 0.0};
+  /// The params of every registered wind field; each its defaults until written.
+  FamilyParams<WindRegistry> params;
+
+  /// The params struct P (MeanderParams, ...) of its wind field.
+  template <class P>
+  P& get() {
+    return params.get<P>(wind_field_registry());
+  }
+  /// The params struct P (MeanderParams, ...) of its wind field.
+  template <class P>
+  const P& get() const {
+    return params.get<P>(wind_field_registry());
+  }
+
+  /// The config keys: "model", "vx", "vy", "vz", then the table of every registered wind field
+  /// with its keys.
+  void fields(FieldVisitor& v);
+  /// Reads the config keys without writing.
+  void read_fields(FieldReader& v) const;
+};
+
 /// Builds the wind field a scenario asks for over `region` (the arena); `rng` is its own random
-/// stream (Stream::kWind), which a constant wind never draws from.
+/// stream (Stream::kWind), which a constant wind never draws from. Throws
+/// std::invalid_argument for a model not registered.
 std::unique_ptr<WindField> make_wind_field(const WindParams& params, const WindRegion& region,
                                            Rng rng);
+
+/// Refuses a wind that its field cannot run over `region` with time step `dt` (s): the field's
+/// check hook, where it has one. Throws ConfigError naming the keys.
+void check_wind_field(const WindParams& params, const WindRegion& region, double dt);
+
+/// True when the chosen field is the mean wind, exactly, at every point and always (its steady
+/// hook).
+bool wind_is_steady(const WindParams& params);
+
+/// What the chosen field depends on besides its keys and the mean wind, over `region` (its
+/// identity hook): text, empty for nothing.
+std::string wind_identity(const WindParams& params, const WindRegion& region);
 
 }  // namespace plumetrace

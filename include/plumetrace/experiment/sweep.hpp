@@ -72,7 +72,7 @@ struct SweepPoint {
   std::vector<ConfigValue> values;
   /// The resolved scenario.
   Scenario scenario;
-  /// Hash of the resolved scenario (hex), stored with every run.
+  /// Hash of the resolved scenario (hex, scenario_hash), stored with every run.
   std::string config_hash;
 };
 
@@ -104,8 +104,14 @@ std::string axis_values_text(const SweepDef& def, const SweepPoint& point);
 /// FNV-1a 64-bit hash of a text, as 16 hex digits.
 std::string hash_text(const std::string& text);
 
-/// What identifies a plume: every config key it depends on, hashed (runs whose scenarios share
-/// this key and whose (seed, trial) match meet bit for bit the same plume).
+/// What identifies a run of a scenario, a sweep point's config_hash: the hash of its canonical
+/// values (canonical_config with ConfigKeys::kOfTheRun), not of its TOML, so that editing a
+/// key's help or a comment changes no hash.
+std::string scenario_hash(const Scenario& scenario);
+
+/// What identifies a plume: every config key it depends on and its wind field's identity
+/// (wind_identity), hashed from their canonical values (runs whose scenarios share this key and
+/// whose (seed, trial) match meet bit for bit the same plume).
 std::string plume_key(const Scenario& scenario);
 
 /// Runs several teams in one shared environment, a World of one team per scenario (docs/model.md
@@ -121,7 +127,7 @@ struct RunRow {
   int point = 0;            ///< point index in the sweep
   std::uint64_t trial = 0;  ///< trial index
   int agent = 0;            ///< the robot's index in its team (0 for a robot alone)
-  std::string config_hash;  ///< hash of the point's resolved scenario
+  std::string config_hash;  ///< hash of the point's resolved scenario (scenario_hash)
   RunResult result;         ///< metrics (with seed, trial and agent)
 };
 

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -247,10 +248,6 @@ inline constexpr double kMaxSteps = 1e7;
 /// conversion is undefined from 2^64).
 inline constexpr double kMaxReleasePerStep = 1e6;
 
-/// The most substeps the meandering wind's grid may need per step of sim.dt: 1000. why: its cost
-/// grows with K / spacing^2 and the wind speed squared; beyond this a run would crawl.
-inline constexpr double kMaxWindSubsteps = 1000.0;
-
 /// The arena length (m) the paper's ring and warm-up were set for: the 16 m wind tunnel.
 inline constexpr double kReferenceArenaLength = 16.0;
 /// The wind (m/s) the paper's ring and warm-up were set for: the plugin's 0.9 m/s (the default
@@ -304,6 +301,26 @@ std::vector<std::string> scenario_warnings(const Scenario& scenario);
 /// Every config key of a scenario bound to its place, in file order (Scenario::fields).
 std::vector<Field> scenario_fields(Scenario& scenario);
 
+/// A config key renamed in a later version than `after`: its old name is still accepted, with a
+/// warning on stderr, until the next version.
+struct RenamedKey {
+  std::string_view old_key;  ///< the name it had, "wind.meander_gain"
+  std::string_view new_key;  ///< the name it has, "meander.gain"
+  std::string_view after;    ///< the last version that had the old name, "0.4.0"
+};
+
+/// The keys renamed since the last version, accepted under their old names wherever a key is
+/// (files, --set, sweep axes, Python's keyword settings): set_field, set_field_text and
+/// get_field map an old name to its new one, saying so on stderr once per process and name
+/// (renamed_key_warning). A resolved scenario has the new names only.
+std::span<const RenamedKey> renamed_keys();
+
+/// The current name of a key: the new name of a renamed key, else `key` itself.
+std::string_view current_key(std::string_view key);
+
+/// What is said on stderr when a renamed key is used under its old name; it names the new one.
+std::string renamed_key_warning(const RenamedKey& key);
+
 /// Sets one key from a typed value; throws ConfigError naming the key and the allowed range.
 void set_field(Scenario& scenario, std::string_view key, const ConfigValue& value);
 
@@ -335,8 +352,15 @@ enum class ConfigKeys {
 
 /// The fully resolved scenario as TOML that reads back to the same scenario: its keys, in the
 /// order of the field list, with its help as a comment. With ConfigKeys::kOfTheRun (what a sweep
-/// point stores and hashes) registering a controller changes no other controller's config.
+/// point stores) registering a controller changes no other controller's config.
 std::string scenario_to_toml(const Scenario& scenario, ConfigKeys keys = ConfigKeys::kAll);
+
+/// The scenario's values as canonical text, one `table.key=value` line per key in the order of
+/// the field list: numbers as format_number writes them (they read back to the same double),
+/// choices by name in quotes, no help and no comments. What a run's identity hashes
+/// (scenario_hash, sweep.hpp), so that editing a key's help changes no hash; `keys` as for
+/// scenario_to_toml.
+std::string canonical_config(const Scenario& scenario, ConfigKeys keys = ConfigKeys::kOfTheRun);
 
 /// Where a setting comes from; later layers override earlier ones.
 enum class Layer {

@@ -351,10 +351,11 @@ TEST(CliReliability, CsvTraceAndFilamentsAreWrittenAsOnePair) {
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 2u) << "a .part file was left behind";
-  // with room, both are written
+  // with room, all three are written
   ASSERT_EQ(cli(args).code, 0);
-  EXPECT_EQ(read_file(trace).rfind("time,x,y", 0), 0u);
+  EXPECT_EQ(read_file(trace).rfind("agent,time,x,y", 0), 0u);
   EXPECT_EQ(read_file(filaments).rfind("time,x,y,z,w", 0), 0u);
+  EXPECT_EQ(read_file(dir + "/t.controller.csv"), "time,agent,layer,x,y,value\n");
 }
 
 // F18, F22: nan, inf, empty texts and out-of-range counts are refused naming the option, with a

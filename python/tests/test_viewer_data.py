@@ -1,5 +1,5 @@
 """The run viewer and the report agree on colours, and a JSON trace reads in Python with NumPy
-as docs/viewer.md says (trace format 2)."""
+as docs/viewer.md says (trace format 3)."""
 
 import base64
 import json
@@ -70,7 +70,7 @@ def test_a_json_trace_reads_with_numpy_and_matches_the_run(tmp_path):
     subprocess.run([CLI, "run", "--seed", "4", "--trace", str(trace_path), "--snapshot-interval",
                     "5"], check=True, capture_output=True)
     trace = json.loads(trace_path.read_text())
-    assert trace["plumetrace_trace"] == 2
+    assert trace["plumetrace_trace"] == 3
     run = pt.run(seed=4, snapshot_interval=5.0)
     steps, traj = trace["steps"], run["trajectory"]
     # the steps as the run computed them; states as indices into their names

@@ -106,9 +106,9 @@ json declared_json(const Vec2& d) {
 }
 
 // a robot's result, with its index in the team
-json agent_result_json(const RunResult& result, const RunInfo& info) {
+json agent_result_json(const RunResult& result, const RunInfo& info, int agent) {
   json r = result_json(result, info);
-  r["agent"] = result.agent;
+  r["agent"] = agent;
   return r;
 }
 
@@ -165,7 +165,7 @@ void write_json_trace(const std::string& path, const Trace& trace, const Scenari
     out << controller_snapshot_json(trace.controller_snapshots[i]).dump();
   }
   out << R"(],"declared":)" << declared_json(first.declared).dump() << R"(,"plumetrace_trace":)"
-      << kTraceFormat << R"(,"result":)" << agent_result_json(result, info).dump()
+      << kTraceFormat << R"(,"result":)" << agent_result_json(result, info, result.agent).dump()
       << R"(,"snapshot_encoding":)" << encoding.dump() << R"(,"snapshots":[)";
   for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
     const auto& snap = trace.snapshots[i];
@@ -185,7 +185,7 @@ void write_json_trace(const std::string& path, const Trace& trace, const Scenari
     if (k > 1) out << ',';
     out << json{{"agent", a.index},
                 {"declared", declared_json(a.declared)},
-                {"result", agent_result_json(a.result, info)},
+                {"result", agent_result_json(a.result, info, a.index)},
                 {"start", pose_json(a.start)},
                 {"steps", steps_json(a.steps)}}
                .dump();

@@ -112,6 +112,10 @@ before(async () => {
   // a long run (37 500 steps): a tight spiral that never smells odor until the timeout
   plumetrace("run", "--algorithm", "surge-spiral", "--set", "surge_spiral.d_gap=0.02",
              "--set", "odor.threshold=1e15", "--view", "long.html");
+  // a team of three robots on one plume, 2 minutes
+  plumetrace("run", "--set", "team.count=3", "--set", "supervisor.timeout=120", "--trace",
+             "team.json", "--snapshot-interval", "1");
+  plumetrace("view", "team.json", "-o", "team.html");
   browser = await chromium.launch({
     executablePath: browserPath,
     args: ["--no-sandbox", "--disable-background-networking", "--disable-component-update",
@@ -275,14 +279,15 @@ test("a long run is thinned to its frame budget and still plays", async () => {
   const page = await open("long.html");
   const data = await page.evaluate(() => JSON.parse(document.getElementById("plumetrace-data").textContent));
   assert.equal(data.steps, 37501);
-  assert.ok(data.frames.time.length <= 12000 + 10, `frames ${data.frames.time.length}`);
+  const robot = data.robots[0];
+  assert.ok(robot.frames.time.length <= 12000 + 10, `frames ${robot.frames.time.length}`);
   assert.ok(data.snapshots.time.length <= 600);
-  assert.equal(data.frames.time.at(-1), 1200);
+  assert.equal(robot.frames.time.at(-1), 1200);
   await page.locator("#last").click();
   assert.match(await page.locator("#p-time").textContent(), /^1200\.00 s/);
   // drawing cost of the last frame (the longest path), reported for docs/performance.md
   const ms = await viewer(page, "drawTime(20)");
-  console.log(`# long run: ${data.steps} steps, ${data.frames.time.length} frames, ${data.path.time.length} path vertices, ${data.snapshots.time.length} snapshots; one frame drawn in ${ms.toFixed(2)} ms`);
+  console.log(`# long run: ${data.steps} steps, ${robot.frames.time.length} frames, ${robot.path.time.length} path vertices, ${data.snapshots.time.length} snapshots; one frame drawn in ${ms.toFixed(2)} ms`);
   await page.close();
   assert.deepEqual(errors, []);
 });
@@ -422,5 +427,38 @@ test("in a meandering wind the compass shows the true wind the trace recorded at
   assert.ok(readings.some((w) => Math.abs(w.u - 0.9) > 1e-3 || Math.abs(w.v) > 1e-3), "a meander, not the mean");
   const turn = Math.abs(Math.atan2(readings[0].v, readings[0].u) - Math.atan2(readings[1].v, readings[1].u));
   assert.ok(turn > 0.01, `the wind turned by ${turn} rad`);
+  assert.deepEqual(errors, []);
+});
+
+test("a team's robots are drawn each in its colour, with a row each the panel can follow", async () => {
+  const trace = JSON.parse(readFileSync(join(dir, "team.json"), "utf8"));
+  const page = await open("team.html#t=60");
+  assert.equal(await viewer(page, "robots"), 3);
+  const rows = page.locator("#robots tr");
+  assert.equal(await rows.count(), 3);
+  // each row says its robot's outcome, as the trace has it
+  const outcomes = [trace.result, ...trace.teammates.map((m) => m.result)].map((r) => r.outcome);
+  for (let k = 0; k < 3; ++k) assert.match(await rows.nth(k).textContent(), new RegExp(`robot ${k}.*${outcomes[k]}`));
+  // each robot's disc in its own colour, robot 0 in a robot alone's
+  await page.locator("#layer-wind_field").click();
+  const style = await page.evaluate(() => JSON.parse(document.getElementById("plumetrace-data").textContent).style);
+  assert.equal(style.robots[0], style.robot);
+  assert.equal(new Set(style.robots).size, style.robots.length);
+  const img = await shoot(page);
+  for (let k = 0; k < 3; ++k) {
+    const r = await viewer(page, `robotOnScreen(${k})`);
+    const box = { x0: r.x - r.radius, y0: r.y - r.radius, x1: r.x + r.radius, y1: r.y + r.radius };
+    const pixels = count(img, box, (p) => near(p, hex(r.color), 40));
+    assert.ok(pixels > 0.3 * r.radius * r.radius, `robot ${k} pixels ${pixels} in ${r.color}`);
+  }
+  // a click on a row makes the panel follow that robot
+  await rows.nth(2).click();
+  assert.equal(await viewer(page, "selected()"), 2);
+  assert.equal(await page.locator("#now-title").textContent(), "Now: robot 2");
+  assert.match(await page.locator("#outcome").textContent(), /robot 2/);
+  // the paths in their robots' colours, or in their states'
+  assert.equal(await page.locator("#path-colour").inputValue(), "robot");
+  await page.locator("#path-colour").selectOption("state");
+  await page.close();
   assert.deepEqual(errors, []);
 });

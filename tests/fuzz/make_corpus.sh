@@ -80,7 +80,8 @@ printf 'unknowns = "unknowns.toml"\nsets_dir = "nowhere"\nname = ""\n' >"$c/bad-
 printf 'unknowns = "unknowns.toml"\n\n#--unknowns\n[[unknown]]\nname = "a"\nkey = "plume.amount"\nlow = 1.0\nhigh = nan\n[[unknown]]\nname = "a"\nkey = "plume.amount"\nchoices = []\n' \
   >"$c/bad-unknowns.toml"
 
-# trace: a short run written as .json and .csv, and broken variants
+# trace: a short run written as .json and .csv, a team's, one with controller snapshots, and
+# broken variants (format2.json, a trace of the format before teams, is kept as it is)
 t="$corpus/trace"
 short=(--set sim.dt=0.1 --set sim.warmup=1 --set supervisor.timeout=1.2 --set plume.capacity=12
   --set plume.release_rate=10 --set robot.start_x=1.8)
@@ -88,14 +89,19 @@ short=(--set sim.dt=0.1 --set sim.warmup=1 --set supervisor.timeout=1.2 --set pl
 "$P" run "${short[@]}" --trace "$tmp/run.csv" --snapshot-interval 0.6 >/dev/null
 "$P" run "${short[@]}" --algorithm surge-spiral --set robot.start_x=1.3 --set supervisor.timeout=2 \
   --trace "$tmp/success.json" --snapshot-interval 0 >/dev/null
+"$P" run "${short[@]}" --set team.count=3 --trace "$tmp/team.json" --snapshot-interval 0.6 \
+  >/dev/null
 cp "$tmp/run.json" "$t/run.json"
 cp "$tmp/success.json" "$t/success.json"
+cp "$tmp/team.json" "$t/team.json"
 cp "$tmp/run.csv" "$t/run.csv"
 cp "$tmp/run.filaments.csv" "$t/run.filaments.csv"
-/usr/bin/python3 - "$tmp/run.json" "$t" <<'EOF'
+cp "$tmp/run.controller.csv" "$t/run.controller.csv"
+/usr/bin/python3 - "$tmp/run.json" "$t" "$tmp/team.json" <<'EOF'
 import json, sys
 doc = json.load(open(sys.argv[1]))
 out = sys.argv[2]
+team = json.load(open(sys.argv[3]))
 def write(name, d):
     with open(f"{out}/{name}", "w") as f:
         json.dump(d, f, separators=(",", ":"))
@@ -108,6 +114,18 @@ write("bad-snapshot.json", d)
 d = json.loads(json.dumps(doc)); del d["plumetrace_trace"]; write("bad-not-trace.json", d)
 d = json.loads(json.dumps(doc)); d["snapshots"][0]["x"] = "@@@@"; write("bad-base64.json", d)
 d = json.loads(json.dumps(doc)); d["steps"]["state"][0] = 9; write("bad-state-index.json", d)
+# a controller's snapshots (the CLI's controllers show none): every layer, one of each robot
+snap = {"time": 0.0, "agent": 0, "points": {"x": [1.0, 1.2], "y": [0.1, -0.2]},
+        "weights": [0.25, 0.75], "path": {"x": [1.8, 1.4], "y": [0.0, 0.1]},
+        "grid": {"x0": 0.1, "y0": -0.2, "dx": 0.2, "dy": 0.2, "nx": 2, "ny": 2,
+                 "values": [0.0, 0.5, None, 1.0]}, "estimate": [1.1, 0.0]}
+d = json.loads(json.dumps(team)); d["declared"] = [1.1, 0.0]
+d["controller_snapshots"] = [dict(snap, agent=k) for k in range(3)]
+write("snapshots.json", d)
+d = json.loads(json.dumps(team)); d["teammates"][1]["steps"]["x"] = d["teammates"][1]["steps"]["x"][:-1]
+write("bad-teammate.json", d)
+d = json.loads(json.dumps(team)); d["controller_snapshots"] = [dict(snap, grid=dict(snap["grid"], nx=3))]
+write("bad-controller-snapshot.json", d)
 EOF
 
 # store: a tiny sweep's store with 512-byte pages, and variants (WAL, partial, other campaign,

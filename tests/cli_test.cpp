@@ -228,7 +228,8 @@ TEST(Cli, CsvTraceHoldsStepsAndFilamentSnapshots) {
   std::istringstream steps(read_file(path));
   std::string header, line;
   std::getline(steps, header);
-  EXPECT_EQ(header.rfind("time,x,y,heading,odometer,state,odor,concentration,wind_samples", 0), 0u);
+  EXPECT_EQ(header.rfind("agent,time,x,y,heading,odometer,state,odor,concentration,wind_samples", 0),
+            0u);
   int rows = 0;
   while (std::getline(steps, line)) ++rows;
   // one row at release plus one per step

@@ -183,6 +183,24 @@ void Agent::block() {
   moving_ = false;
 }
 
+void Agent::slide(Vec2 to) {
+  const auto& src = scenario_.source;
+  const double r = scenario_.robot.radius;
+  const double contact = src.solid_radius + r;
+  if ((src.solid_radius > 0.0 &&
+       std::hypot(to.x - src.center.x, to.y - src.center.y) < contact) ||
+      (scenario_.supervisor.walls == WallRule::kBlock &&
+       !clear_of_walls(scenario_.arena, r, to.x, to.y))) {
+    block();
+    return;
+  }
+  proposed_.pose.x = to.x;
+  proposed_.pose.y = to.y;
+  proposed_.odometer = robot_.odometer + std::hypot(to.x - robot_.pose.x, to.y - robot_.pose.y);
+  proposed_.touching = false;
+  moving_ = to.x != robot_.pose.x || to.y != robot_.pose.y;
+}
+
 void Agent::commit() {
   if (ended_) return;
   robot_ = proposed_;
@@ -373,6 +391,7 @@ void World::start(const Scenario& scenario, std::uint64_t seed, std::uint64_t tr
   blocked_.resize(agents_.size());
   running_.resize(agents_.size());
   hit_.resize(agents_.size());
+  slid_.resize(agents_.size());
   live_.reserve(agents_.size());
 }
 
@@ -411,13 +430,57 @@ void World::step() {
   }
 }
 
+namespace {
+
+// why: the move nearest `d` that keeps a round body clear of teammates standing where they are
+// now: for each teammate k in reach, the move's part toward it (unit normal n[k]) may not
+// exceed the gap g[k] >= 0 between the bodies. The set of such moves is convex and holds 0, so
+// the nearest one is unique; in the plane it is d itself, or d projected onto one constraint's
+// line, or the corner of two, whichever is allowed and nearest
+Vec2 nearest_clear_move(Vec2 d, const std::vector<Vec2>& n, const std::vector<double>& g) {
+  constexpr double kSlack = 1e-12;
+  const auto allowed = [&](Vec2 v) {
+    for (std::size_t k = 0; k < n.size(); ++k) {
+      if (v.x * n[k].x + v.y * n[k].y > g[k] + kSlack) return false;
+    }
+    return true;
+  };
+  if (allowed(d)) return d;
+  Vec2 best{0.0, 0.0};
+  double best_d2 = d.x * d.x + d.y * d.y;
+  const auto consider = [&](Vec2 v) {
+    const double e2 = (v.x - d.x) * (v.x - d.x) + (v.y - d.y) * (v.y - d.y);
+    if (e2 < best_d2 && allowed(v)) {
+      best = v;
+      best_d2 = e2;
+    }
+  };
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    const double over = d.x * n[k].x + d.y * n[k].y - g[k];
+    consider({d.x - over * n[k].x, d.y - over * n[k].y});
+    for (std::size_t l = k + 1; l < n.size(); ++l) {
+      const double det = n[k].x * n[l].y - n[k].y * n[l].x;
+      if (std::fabs(det) < 1e-12) continue;
+      consider({(g[k] * n[l].y - g[l] * n[k].y) / det, (n[k].x * g[l] - n[l].x * g[k]) / det});
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 void World::resolve_contacts(std::size_t begin, std::size_t end) {
-  // why: a set rule, so the result does not depend on the agents' order: every robot of a pair
-  // whose bodies would overlap keeps its position (it turns as proposed); repeat until no two
-  // overlap. Positions before the step never overlap, so each round blocks at least one robot
-  // more or ends. Robots whose runs have ended are out of the arena
+  // why: set rules, so the result does not depend on the agents' order. First, a robot whose
+  // proposal would overlap a teammate where that teammate stands now slides: its move becomes
+  // the nearest one that keeps clear of every teammate where they stand (a round body pushed
+  // against another slides along it; pressed into a corner of two, it stops). Without the slide
+  // two robots pressing into each other stand still for ever with their odometers frozen, so no
+  // controller's loss rule ever turns them. All slides are computed from positions before the
+  // step, then made together. Second, every robot of a pair whose proposals would still overlap
+  // keeps its position (it turns as proposed); repeat until no two overlap. Positions before
+  // the step never overlap, so each round blocks at least one robot more or ends. Robots whose
+  // runs have ended are out of the arena
   const double r = agents_[begin]->scenario().robot.radius;
-  const double d2 = 4.0 * r * r;
   std::fill(blocked_.begin() + static_cast<std::ptrdiff_t>(begin),
             blocked_.begin() + static_cast<std::ptrdiff_t>(end), 0);
   // why: members, so that a step allocates nothing once the first has sized them
@@ -426,6 +489,38 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
   for (std::size_t i = begin; i < end; ++i) {
     if (!agents_[i]->done()) live.push_back(i);
   }
+  // the slides
+  bool slid = false;
+  for (const std::size_t i : live) {
+    slid_[i] = agents_[i]->proposed_position();
+    if (!agents_[i]->proposes_move()) continue;
+    const Vec2 p = agents_[i]->position(), q = slid_[i];
+    const double reach = std::hypot(q.x - p.x, q.y - p.y);
+    normals_.clear();
+    gaps_.clear();
+    for (const std::size_t j : live) {
+      if (j == i) continue;
+      const Vec2 pj = agents_[j]->position(), qj = agents_[j]->proposed_position();
+      const double dist = std::hypot(pj.x - p.x, pj.y - p.y);
+      if (dist >= 2.0 * r + reach + std::hypot(qj.x - pj.x, qj.y - pj.y)) continue;
+      normals_.push_back({(pj.x - p.x) / dist, (pj.y - p.y) / dist});
+      // each of the two may close half the gap, so together they never overlap
+      gaps_.push_back(std::max(0.0, 0.5 * (dist - 2.0 * r)));
+    }
+    if (normals_.empty()) continue;
+    const Vec2 v = nearest_clear_move({q.x - p.x, q.y - p.y}, normals_, gaps_);
+    slid_[i] = {p.x + v.x, p.y + v.y};
+    slid = true;
+  }
+  if (slid) {
+    for (const std::size_t i : live) {
+      const Vec2 q = agents_[i]->proposed_position();
+      if (slid_[i].x != q.x || slid_[i].y != q.y) agents_[i]->slide(slid_[i]);
+    }
+  }
+  // the blocks; why the nanometre: two slides that keep exactly in touch may round to an
+  // overlap of a few ulps, which is no overlap of bodies
+  const double d2_block = (2.0 * r - 1e-9) * (2.0 * r - 1e-9);
   std::vector<char>& hit = hit_;
   for (;;) {
     std::fill(hit.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -435,7 +530,7 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
       for (std::size_t b = a + 1; b < live.size(); ++b) {
         const Vec2 pb = agents_[live[b]]->proposed_position();
         const double dx = pa.x - pb.x, dy = pa.y - pb.y;
-        if (dx * dx + dy * dy < d2) hit[live[a]] = hit[live[b]] = 1;
+        if (dx * dx + dy * dy < d2_block) hit[live[a]] = hit[live[b]] = 1;
       }
     }
     bool more = false;

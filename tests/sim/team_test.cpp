@@ -143,13 +143,50 @@ TEST(Team, BodiesInContactStopAndNeverOverlap) {
   const double r = RobotParams{}.radius;
   const double travel = RobotParams{}.wheel_speed * SimParams{}.dt;
   ASSERT_FALSE(gaps.empty());
-  for (const double g : gaps) EXPECT_GE(g, 2.0 * r);
-  // they stopped within one step's travel each of touching, and moved no more after
+  for (const double g : gaps) EXPECT_GE(g, 2.0 * r - 1e-9);
+  // head on, there is nothing to slide along: they stopped within one step's travel each of
+  // touching, and moved no more after
   EXPECT_LT(gaps.back(), 2.0 * r + 2.0 * travel);
   EXPECT_EQ(results[0].outcome, Outcome::kTimeout);
   // each drove (0.3 - 2 r) / 2 toward the other, to within a step: the rest was blocked
   EXPECT_NEAR(results[0].d_t, (0.3 - 2.0 * r) / 2.0, travel + 1e-12);
   EXPECT_NEAR(results[0].d_t, results[1].d_t, 1e-12);
+}
+
+// Robots that meet at an angle slide along each other: neither stands still, neither overlaps
+// (the contact rule of docs/agents.md). Robot 0 drives toward -y and robot 1 toward +y, each
+// also toward -x at the angle `tilt` from the line between them.
+TEST(Team, BodiesMeetingAtAnAngleSlideAlongEachOther) {
+  constexpr double tilt = 0.4;
+  constexpr double seconds = 10.0;
+  Scenario s = scenario(Algorithm::kCasting, seconds);
+  s.team.count = 2;
+  validate(s);
+  const auto go = [](double h) { return [h](const Observation&) { return Command::go(h); }; };
+  World w({&s}, kSeed, 0, scripted({go(kPi / 2 - tilt), go(-kPi / 2 + tilt)}));
+  const double r = RobotParams{}.radius;
+  const double v = RobotParams{}.wheel_speed;
+  const double travel = v * SimParams{}.dt;
+  double closest = 1e9;
+  while (!w.done()) {
+    w.step();
+    const auto& p0 = w.agent(0).robot().pose;
+    const auto& p1 = w.agent(1).robot().pose;
+    closest = std::min(closest, std::hypot(p0.x - p1.x, p0.y - p1.y));
+  }
+  const auto results = w.results();
+  // they touched, within a nanometre, and never overlapped by more
+  EXPECT_GE(closest, 2.0 * r - 1e-9);
+  EXPECT_LT(closest, 2.0 * r + travel);
+  for (const RunResult& res : results) {
+    EXPECT_EQ(res.outcome, Outcome::kTimeout);
+    // the move along -x is across the contact, so it is never lost: after the turn toward the
+    // heading (under a second), the robot moves toward -x at v sin(tilt) the whole run
+    EXPECT_NEAR(res.d_u, v * std::sin(tilt) * seconds, v * 1.0);
+    // it drove on after touching: more than the (0.3 - 2 r) / 2 / cos(tilt) it took to meet
+    EXPECT_GT(res.d_t, 2.0 * (0.3 - 2.0 * r) / 2.0 / std::cos(tilt));
+  }
+  EXPECT_NEAR(results[0].d_t, results[1].d_t, 1e-9);
 }
 
 TEST(Team, WithoutContactBodiesPassThroughEachOther) {

@@ -69,6 +69,12 @@ class Agent {
   Vec2 proposed_position() const { return {proposed_.pose.x, proposed_.pose.y}; }
   /// Blocks this step's move (a contact): the robot keeps its position, turns as proposed.
   void block();
+  /// Replaces this step's move by a straight one to `to` (a contact it slides along); the
+  /// odometer counts the new move. A slide into the source's solid body, or into a wall that
+  /// blocks, is blocked instead.
+  void slide(Vec2 to);
+  /// Where the robot's centre is before this step's move.
+  Vec2 position() const { return {robot_.pose.x, robot_.pose.y}; }
   /// Makes the proposed motion and checks the run (nothing after a give-up or declaration).
   void commit();
   /// Queues a teammate's message, delivered at the sense of step `step` (Agent::steps()).
@@ -255,6 +261,9 @@ class World {
   std::vector<char> running_;      // this step: the agent's run had not ended
   std::vector<char> hit_;          // contact resolution: the agent's body would overlap
   std::vector<std::size_t> live_;  // contact resolution: the team's running agents
+  std::vector<Vec2> slid_;         // contact resolution: the agent's move after sliding
+  std::vector<Vec2> normals_;      // contact resolution: toward the teammates a move meets
+  std::vector<double> gaps_;       // contact resolution: the gaps to them
 };
 
 /// Called after the warm-up and after every step of a run.

@@ -1,6 +1,8 @@
 #include "campaign_run.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include "errors.hpp"
 #include "shell.hpp"
@@ -63,7 +65,14 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
 
 int draw_report(const std::string& out, const std::string& module,
                 const std::vector<std::string>& args, bool is_file) {
-  const std::string python_path = data_dir() + "/python";
+  // why: the reports' package is the source's; this build's copy after it lends the compiled
+  // module, which the package's __init__ finds there (pkgutil.extend_path): the evidence rules'
+  // Student's t quantile is the C++ library's
+  std::string python_path = data_dir() + "/python";
+  std::error_code error;
+  if (std::filesystem::is_directory(std::string(kBuildPythonDir) + "/plumetrace", error)) {
+    python_path += std::string(":") + kBuildPythonDir;
+  }
   // what the report prints follows what was printed here
   std::fflush(nullptr);
   std::vector<std::string> argv{kPython, "-P"};

@@ -31,6 +31,11 @@ __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning",
            "SweepRows", "algorithms", "probe", "register_controller", "report", "result_fields",
            "run", "sweep", "__version__"]
 
+# why: with the source tree's package first on the path and a build's copy after it (what
+# `plumetrace study` gives a report), the compiled module plumetrace._core is found in the
+# build's copy; a package alone on the path is unchanged
+__path__ = __import__("pkgutil").extend_path(__path__, __name__)
+
 # the submodules a user imports, loaded on first use
 _SUBMODULES = ("calibrate", "controllers", "env", "evidence", "plots", "report", "studies",
                "sweeps")

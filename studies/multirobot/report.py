@@ -31,6 +31,9 @@ COLORS = {"casting": "#4e79a7", "surge-spiral": "#f28e2b", "surge-cast": "#59a14
 # The statements give directions only ("more often", "sooner"), so m = 0, as the meander study
 # (docs/meander.md, "How the report decides").
 MIN_EFFECT = 0.0
+# how a robot's run ended, in words
+ENDS = {"success": "arrived", "wall": "met a wall", "timeout": "timed out",
+        "gave_up": "gave up", "wrong_declaration": "declared a wrong source"}
 
 
 class MultirobotReportError(Exception):
@@ -67,6 +70,14 @@ class Teams:
         """Mean number of robots that arrived, per team."""
         n = [sum(o == "success" for _, o, _, _ in r) for r in self.robots.values()]
         return sum(n) / len(n) if n else math.nan
+
+    def outcomes(self) -> dict:
+        """How many robots ended in each outcome, most frequent first."""
+        counts: dict = {}
+        for r in self.robots.values():
+            for _, o, _, _ in r:
+                counts[o] = counts.get(o, 0) + 1
+        return dict(sorted(counts.items(), key=lambda kv: (-kv[1], kv[0])))
 
     def distance_per_robot(self) -> float:
         d = [x for r in self.robots.values() for _, _, _, x in r]
@@ -166,7 +177,7 @@ def compare(one: Teams, many: Teams) -> tuple:
         # sooner: the relative difference of the times is below 0
         time = evidence.directional(evidence.negate(rel), MIN_EFFECT).verdict
         words += (f"; first arrival {b[1]:.0f} s with one, {a[1]:.0f} s with more, relative "
-                  f"difference [{100 * rel[0]:.0f}%, {100 * rel[1]:.0f}%]")
+                  f"difference [{100 * rel[0]:.1f}%, {100 * rel[1]:.1f}%]")
     return success, time, words
 
 
@@ -179,7 +190,7 @@ def build_report(out_dir) -> list:
         raise MultirobotReportError(f"cannot read {path}: {e}") from e
     teams = read_teams(out)
     fig_dir = output_folder(out / "figures", "the report's figures")
-    sections, more_often, sooner, not_more = [], [], [], []
+    sections, more_often, sooner, not_more, failing = [], [], [], [], []
     for sweep in results.get("sweeps", []):
         name, title = sweep["name"], sweep.get("title", sweep["name"])
         wind = "meandering" if "meander" in title.lower() else "laminar"
@@ -221,6 +232,14 @@ def build_report(out_dir) -> list:
                 sooner.append(f"{alg} ({wind})")
             said.append(f"{alg}: {counts[-1]} robots find the source more often than one: "
                         f"{success}; sooner: {time} ({words}).")
+            # why: a team of any size that mostly fails is a finding; say how its robots ended
+            if evidence.wilson_interval(many.successes, many.runs)[1] < 0.5:
+                failing.append(f"{alg} ({wind})")
+                ends = many.outcomes()
+                total = sum(ends.values())
+                said.append(f"{alg} fails in {wind} wind whatever the team: of the "
+                            f"{total} robots of its {counts[-1]}-robot teams, " +
+                            ", ".join(f"{n} {ENDS.get(o, o)}" for o, n in ends.items()) + ".")
         blocks.insert(0, Para([" ".join(said)]))
         sections.append(Section(anchor=f"sweep-{name}", title=f"{name}: {title}", blocks=blocks))
     findings = []
@@ -228,6 +247,8 @@ def build_report(out_dir) -> list:
         findings.append("more robots find the source more often for " + ", ".join(more_often))
     if sooner:
         findings.append("sooner for " + ", ".join(sooner))
+    if failing:
+        findings.append("teams of any size fail for " + ", ".join(failing))
     if not more_often and not sooner:
         findings.append("more robots neither find the source clearly more often nor sooner")
     title = "Several robots on one plume: " + "; ".join(findings)

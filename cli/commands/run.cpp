@@ -83,6 +83,8 @@ int RunCommand::run() {
   for (const RunResult& r : results) {
     RunInfo robot = info;
     robot.agent = r.agent;
+    // a robot of a mixed team names its own algorithm
+    robot.algorithm = algorithm_name(member_scenario(s, r.agent).controller.algorithm);
     if (json) {
       std::cout << result_to_json(r, robot) << std::endl;
     } else {

@@ -65,7 +65,15 @@ std::string scenario_to_json(const Scenario& scenario) {
   json j = json::object();
   for_each_value(scenario, [&j](const FieldValue& f) {
     const double* d = std::get_if<double>(&f.value);
-    j[std::string(f.table)][std::string(f.name)] =
+    // why: nested at every dot, so a robot's own table "member.2.controller" is
+    // {"member": {"2": {"controller": ...}}}, as TOML reads [member.2.controller]
+    json* node = &j;
+    std::string_view table = f.table;
+    for (std::size_t dot; (dot = table.find('.')) != std::string_view::npos;
+         table.remove_prefix(dot + 1)) {
+      node = &(*node)[std::string(table.substr(0, dot))];
+    }
+    (*node)[std::string(table)][std::string(f.name)] =
         d && std::isinf(*d) ? json(format_number(*d)) : value_to_json(f.value);
   });
   return j.dump(2);

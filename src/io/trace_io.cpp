@@ -105,10 +105,14 @@ json declared_json(const Vec2& d) {
   return std::isfinite(d.x) && std::isfinite(d.y) ? json::array({d.x, d.y}) : json(nullptr);
 }
 
-// a robot's result, with its index in the team
-json agent_result_json(const RunResult& result, const RunInfo& info, int agent) {
+// a robot's result, with its index in the team and, in a mixed team, its own algorithm
+json agent_result_json(const RunResult& result, const RunInfo& info, int agent,
+                       const Scenario& scenario) {
   json r = result_json(result, info);
   r["agent"] = agent;
+  if (!scenario.members.empty()) {
+    r["algorithm"] = algorithm_name(member_scenario(scenario, agent).controller.algorithm);
+  }
   return r;
 }
 
@@ -165,7 +169,7 @@ void write_json_trace(const std::string& path, const Trace& trace, const Scenari
     out << controller_snapshot_json(trace.controller_snapshots[i]).dump();
   }
   out << R"(],"declared":)" << declared_json(first.declared).dump() << R"(,"plumetrace_trace":)"
-      << kTraceFormat << R"(,"result":)" << agent_result_json(result, info, result.agent).dump()
+      << kTraceFormat << R"(,"result":)" << agent_result_json(result, info, result.agent, scenario).dump()
       << R"(,"snapshot_encoding":)" << encoding.dump() << R"(,"snapshots":[)";
   for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
     const auto& snap = trace.snapshots[i];
@@ -185,7 +189,7 @@ void write_json_trace(const std::string& path, const Trace& trace, const Scenari
     if (k > 1) out << ',';
     out << json{{"agent", a.index},
                 {"declared", declared_json(a.declared)},
-                {"result", agent_result_json(a.result, info, a.index)},
+                {"result", agent_result_json(a.result, info, a.index, scenario)},
                 {"start", pose_json(a.start)},
                 {"steps", steps_json(a.steps)}}
                .dump();
@@ -314,27 +318,37 @@ void write_trace(const std::string& path, const Trace& trace, const Scenario& sc
 
 namespace {
 
-// a config JSON object (nested by table) as settings of one layer, in file order
-std::vector<Setting> config_settings(const json& config, const std::string& origin) {
-  std::vector<Setting> settings;
-  for (const auto& [table, keys] : config.items()) {
-    for (const auto& [name, v] : keys.items()) {
-      const std::string key = table + "." + name;
-      if (v.is_boolean()) {
-        settings.push_back({key, v.get<bool>(), false, origin, Layer::kFile});
-      } else if (v.is_number_integer() &&
-                 (!v.is_number_unsigned() ||
-                  v.get<std::uint64_t>() <=
-                      static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))) {
-        settings.push_back({key, v.get<std::int64_t>(), false, origin, Layer::kFile});
-      } else if (v.is_number()) {
-        settings.push_back({key, v.get<double>(), false, origin, Layer::kFile});
-      } else {
-        // why: strings are parsed for the key's type, as "inf" is written for infinite numbers
-        settings.push_back({key, v.get<std::string>(), true, origin, Layer::kFile});
-      }
+// a config JSON object (nested by table; a robot's own tables nest deeper: member.2.controller)
+// as settings of one layer, in file order
+void add_config_settings(const json& config, const std::string& prefix, const std::string& origin,
+                         std::vector<Setting>& settings, int depth = 0) {
+  for (const auto& [name, v] : config.items()) {
+    const std::string key = prefix + name;
+    if (v.is_object()) {
+      // why: the deepest key is member.K.TABLE.KEY; a file nested deeper is not a config
+      if (depth >= 3) throw ConfigError(origin + ": config key '" + key + "' nests too deep");
+      add_config_settings(v, key + ".", origin, settings, depth + 1);
+      continue;
+    }
+    if (v.is_boolean()) {
+      settings.push_back({key, v.get<bool>(), false, origin, Layer::kFile});
+    } else if (v.is_number_integer() &&
+               (!v.is_number_unsigned() ||
+                v.get<std::uint64_t>() <=
+                    static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))) {
+      settings.push_back({key, v.get<std::int64_t>(), false, origin, Layer::kFile});
+    } else if (v.is_number()) {
+      settings.push_back({key, v.get<double>(), false, origin, Layer::kFile});
+    } else {
+      // why: strings are parsed for the key's type, as "inf" is written for infinite numbers
+      settings.push_back({key, v.get<std::string>(), true, origin, Layer::kFile});
     }
   }
+}
+
+std::vector<Setting> config_settings(const json& config, const std::string& origin) {
+  std::vector<Setting> settings;
+  add_config_settings(config, "", origin, settings);
   return settings;
 }
 

@@ -332,7 +332,99 @@ std::string_view current_key_warned(std::string_view key, const std::string& ori
 }
 
 void set(Scenario& scenario, std::string_view key, const ConfigValue& value, bool text,
-         const std::string& origin = "") {
+         const std::string& origin = "");
+
+constexpr std::string_view kMemberPrefix = "member.";
+
+// why: a robot's own keys are what is its own: its controller, its sensors, its body's motion
+// and start; the world's and the team's keys (wind, plume, arena, start regions, team,
+// supervisor) are one for all, and so is robot.radius, which contacts take as the team's
+bool member_may_set(std::string_view key) {
+  const std::string_view table = key.substr(0, key.find('.'));
+  if (key == "robot.radius" || key == "robot.start_offset_x" || key == "robot.start_offset_y") {
+    return false;
+  }
+  if (table == "controller" || table == "odor" || table == "wind_sensor" || table == "robot") {
+    return true;
+  }
+  for (const auto& e : controller_registry().entries()) {
+    if (e.table == table) return true;
+  }
+  for (const auto& e : sensor_model_registry().entries()) {
+    if (e.table == table) return true;
+  }
+  return false;
+}
+
+// sets member.K.TABLE.KEY: checks the key and its value on a copy, keeps the value as written
+void set_member(Scenario& scenario, std::string_view key, const ConfigValue& value, bool text,
+                const std::string& origin) {
+  const std::string_view rest = key.substr(kMemberPrefix.size());
+  const std::size_t dot = rest.find('.');
+  int robot = -1;
+  const std::string_view digits = rest.substr(0, dot);
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), robot);
+  if (dot == std::string_view::npos || digits.empty() || error != std::errc{} ||
+      end != digits.data() + digits.size() || robot < 1 || robot >= kMaxTeam) {
+    throw ConfigError("'" + std::string(key) +
+                      "': a robot's own key is member.K.TABLE.KEY with K a robot of the team, 1 "
+                      "to " + std::to_string(kMaxTeam - 1) +
+                      " (robot 0 takes the scenario's keys; docs/agents.md, \"Mixed teams\")");
+  }
+  const std::string prefix = std::string(kMemberPrefix) + std::to_string(robot) + ".";
+  const std::string_view shown = rest.substr(dot + 1);
+  const std::string own(current_key_warned(shown, origin));
+  if (!member_may_set(own)) {
+    throw ConfigError(prefix + own +
+                      ": a robot's own keys are its controller's (controller, the algorithms' "
+                      "tables), its sensors' (odor, its model's table, wind_sensor) and its "
+                      "body's (robot, robot.radius and the start offsets aside); the others are "
+                      "the team's or the world's");
+  }
+  Scenario probe = scenario;
+  probe.members.clear();
+  try {
+    set(probe, own, value, text, origin);
+  } catch (const ConfigError& e) {
+    // the message names the key as the robot's: member.K.TABLE.KEY
+    std::string message = e.what();
+    const std::size_t at = message.find(own);
+    if (at == std::string::npos) throw ConfigError(prefix + own + ": " + message);
+    message.insert(at, prefix);
+    throw ConfigError(message);
+  }
+  MemberSetting m;
+  m.robot = robot;
+  m.key = own;
+  const std::size_t split = own.rfind('.');
+  m.table = prefix + own.substr(0, split);
+  m.name = own.substr(split + 1);
+  for_each_value(probe, [&](const FieldValue& f) {
+    if (is_key(own, f.table, f.name)) {
+      m.help = f.help;
+      m.value = f.value;
+    }
+  });
+  auto& ms = scenario.members;
+  const auto same = std::find_if(ms.begin(), ms.end(), [&](const MemberSetting& x) {
+    return x.robot == robot && x.key == own;
+  });
+  if (same != ms.end()) {
+    *same = std::move(m);
+  } else {
+    ms.push_back(std::move(m));
+  }
+  std::sort(ms.begin(), ms.end(), [](const MemberSetting& a, const MemberSetting& b) {
+    return a.robot != b.robot ? a.robot < b.robot : a.key < b.key;
+  });
+}
+
+void set(Scenario& scenario, std::string_view key, const ConfigValue& value, bool text,
+         const std::string& origin) {
+  if (key.starts_with(kMemberPrefix)) {
+    set_member(scenario, key, value, text, origin);
+    return;
+  }
   Setter setter(current_key_warned(key, origin), key, value, text);
   scenario.fields(setter);
   if (!setter.found) unknown_key(scenario, key);
@@ -413,6 +505,47 @@ ConfigValue get_field(const Scenario& scenario, std::string_view key) {
 void for_each_value(const Scenario& scenario, const std::function<void(const FieldValue&)>& f) {
   ValueReader reader(f);
   read_fields(scenario, reader);
+  for (const MemberSetting& m : scenario.members) f({m.table, m.name, m.help, m.value});
+}
+
+Scenario member_scenario(const Scenario& scenario, int robot) {
+  Scenario s = scenario;
+  s.members.clear();
+  bool own = false;
+  for (const MemberSetting& m : scenario.members) {
+    if (m.robot != robot) continue;
+    set(s, m.key, m.value, false);
+    own = true;
+  }
+  if (own) derive_scenario(s);
+  return s;
+}
+
+bool has_own_start(const Scenario& scenario, int robot) {
+  return std::any_of(scenario.members.begin(), scenario.members.end(),
+                     [&](const MemberSetting& m) {
+                       return m.robot == robot && m.key.starts_with("robot.start_");
+                     });
+}
+
+std::vector<Pose> point_starts(const Scenario& scenario) {
+  const RobotParams& robot = scenario.robot;
+  const int n = scenario.team.count;
+  std::vector<Pose> starts;
+  starts.reserve(static_cast<std::size_t>(n));
+  // robot 0 at the start, the others beside it, alternately left and right of its heading
+  const Vec2 left{-std::sin(robot.start.heading), std::cos(robot.start.heading)};
+  for (int k = 0; k < n; ++k) {
+    if (k > 0 && has_own_start(scenario, k)) {
+      starts.push_back(member_scenario(scenario, k).robot.start);
+      continue;
+    }
+    const double side = (k % 2 == 1 ? 1.0 : -1.0) * static_cast<double>((k + 1) / 2);
+    const double off = side * scenario.team.spacing;
+    starts.push_back({robot.start.x + off * left.x, robot.start.y + off * left.y,
+                      robot.start.heading});
+  }
+  return starts;
 }
 
 namespace {
@@ -434,25 +567,55 @@ void check_team_start(const Scenario& scenario) {
           "'rectangle' or 'disc'); a point start is where it is");
     }
     if (team.count < 2) return;
-    if (contact && team.spacing < 2.0 * r) {
+    const std::vector<Pose> starts = point_starts(scenario);
+    const auto own_keys = [](int k) {
+      const std::string m = "member." + std::to_string(k) + ".robot.";
+      return m + "start_x, " + m + "start_y";
+    };
+    bool formation = false;  // two robots or more stand in the line beside robot 0
+    for (int k = 1; k < team.count; ++k) formation = formation || !has_own_start(scenario, k);
+    if (contact && formation && team.spacing < 2.0 * r) {
       throw ConfigError("team.spacing: the " + n + " robots would start inside each other (" +
                         bound_text(team.spacing) + " m apart, less than two radii, " +
                         bound_text(2.0 * r) + " m); set team.spacing >= " + bound_text(2.0 * r) +
                         " or team.contact = 'off'");
     }
-    const double h = robot.start.heading;
-    // the outermost robots: on the left k = 1, 3, ... at (k + 1) / 2 spacings, on the right
-    // k = 2, 4, ... at k / 2 (sim/world.hpp, team_starts)
-    for (const double side : {-1.0, 1.0}) {
-      const int outer = side > 0.0 ? team.count / 2 : (team.count - 1) / 2;
-      const double reach = static_cast<double>(outer) * team.spacing;
-      const double x = robot.start.x - side * reach * std::sin(h);
-      const double y = robot.start.y + side * reach * std::cos(h);
-      if (x - r < a.x_min || x + r > a.x_max || y - r < a.y_min || y + r > a.y_max) {
+    const double keep_off = scenario.source.solid_radius + r;
+    // why: from the last robot down, so the first formation robot found outside is an outermost
+    for (int k = team.count - 1; k >= 1; --k) {
+      const Pose& p = starts[static_cast<std::size_t>(k)];
+      const bool own = has_own_start(scenario, k);
+      if (p.x - r < a.x_min || p.x + r > a.x_max || p.y - r < a.y_min || p.y + r > a.y_max) {
+        if (own) {
+          throw ConfigError(own_keys(k) + ": robot " + std::to_string(k) +
+                            " would start outside the arena, at (" + bound_text(p.x) + ", " +
+                            bound_text(p.y) + ") m");
+        }
+        // the outermost robots: on the left k = 1, 3, ... at (k + 1) / 2 spacings, on the
+        // right k = 2, 4, ... at k / 2
         throw ConfigError("team.count, team.spacing: the outermost of the " + n +
-                          " robots would start outside the arena, at (" + bound_text(x) + ", " +
-                          bound_text(y) + ") m; fewer robots, a smaller spacing or a start "
-                          "region (start.region)");
+                          " robots would start outside the arena, at (" + bound_text(p.x) +
+                          ", " + bound_text(p.y) + ") m; fewer robots, a smaller spacing or a "
+                          "start region (start.region)");
+      }
+      if (scenario.source.solid_radius > 0.0 &&
+          std::hypot(p.x - scenario.source.center.x, p.y - scenario.source.center.y) <=
+              keep_off) {
+        throw ConfigError((own ? own_keys(k) : std::string("team.count, team.spacing")) +
+                          ": robot " + std::to_string(k) +
+                          " would start inside the source's solid body");
+      }
+      if (!own || !contact) continue;
+      for (int j = 0; j < team.count; ++j) {
+        const Pose& q = starts[static_cast<std::size_t>(j)];
+        if (j == k || (j > k && has_own_start(scenario, j))) continue;
+        if (std::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) {
+          throw ConfigError(own_keys(k) + ": robot " + std::to_string(k) +
+                            " would start inside robot " + std::to_string(j) + " (" +
+                            bound_text(std::hypot(p.x - q.x, p.y - q.y)) +
+                            " m apart, less than two radii, " + bound_text(2.0 * r) +
+                            " m); move it, or set team.contact = 'off'");
+        }
       }
     }
     return;
@@ -496,6 +659,34 @@ void check_team_start(const Scenario& scenario) {
       throw ConfigError("team.count: " + n + " robots of radius " + bound_text(r) +
                         " m do not fit apart in the start region (" + keys + "; about " +
                         bound_text(area) + " m^2 inside the walls)");
+    }
+  }
+}
+
+// every robot's own keys name a robot of the team and make, with the rest, a scenario that
+// holds for that robot alone
+void check_members(const Scenario& scenario) {
+  const int n = scenario.team.count;
+  int checked = 0;
+  for (const MemberSetting& m : scenario.members) {
+    const std::string key = m.table + "." + m.name;
+    if (m.robot >= n) {
+      throw ConfigError(key + ": the team has " + std::to_string(n) +
+                        (n == 1 ? " robot" : " robots") + " (team.count), so there is no robot " +
+                        std::to_string(m.robot));
+    }
+    if (m.key.starts_with("robot.start_") && scenario.start.region != StartRegion::kPoint) {
+      throw ConfigError(key + ": a robot's own start needs start.region = 'point'; in a start "
+                        "region every robot draws its start");
+    }
+    if (m.robot == checked) continue;
+    checked = m.robot;
+    Scenario alone = member_scenario(scenario, m.robot);
+    alone.team.count = 1;
+    try {
+      validate(alone);
+    } catch (const ConfigError& e) {
+      throw ConfigError("member." + std::to_string(m.robot) + ": " + e.what());
     }
   }
 }
@@ -545,6 +736,7 @@ void validate(const Scenario& scenario) {
                       follows(robot.start_y_auto, "y", src.y, robot.start_offset.y));
   }
   check_team_start(scenario);
+  check_members(scenario);
   if (scenario.sim.dt > scenario.supervisor.timeout) {
     throw ConfigError("sim.dt: must not exceed supervisor.timeout");
   }

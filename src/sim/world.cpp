@@ -242,17 +242,13 @@ std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std:
                                                : robot.start.heading;
   };
   if (st.region == StartRegion::kPoint) {
-    // robot 0 at the start, the others beside it, alternately left and right of its heading
-    const Vec2 left{-std::sin(robot.start.heading), std::cos(robot.start.heading)};
+    starts = point_starts(scenario);
     for (int k = 0; k < n; ++k) {
-      const double side = (k % 2 == 1 ? 1.0 : -1.0) * static_cast<double>((k + 1) / 2);
-      const double off = side * scenario.team.spacing;
-      Pose p{robot.start.x + off * left.x, robot.start.y + off * left.y, robot.start.heading};
+      Pose& p = starts[static_cast<std::size_t>(k)];
       if (st.heading == StartHeading::kRandom) {
         Rng rng(derive_seed(seed, trial, Stream::kStart, k));
         p.heading = heading(rng);
       }
-      starts.push_back(p);
     }
     return starts;
   }
@@ -368,8 +364,13 @@ void World::add_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t
                      std::unique_ptr<Controller> first, const ControllerFactory& factory) {
   agents_.push_back(std::make_unique<Agent>(scenario, seed, trial, 0, std::move(first), env_));
   for (int k = 1; k < scenario.team.count; ++k) {
+    // a robot of a mixed team runs with its own keys (Scenario::members)
+    const bool own = std::any_of(scenario.members.begin(), scenario.members.end(),
+                                 [k](const MemberSetting& m) { return m.robot == k; });
+    const Scenario mine = own ? member_scenario(scenario, k) : Scenario{};
+    const Scenario& s = own ? mine : scenario;
     agents_.push_back(std::make_unique<Agent>(
-        scenario, seed, trial, k, make_run_controller(scenario, seed, trial, factory, k), env_));
+        s, seed, trial, k, make_run_controller(s, seed, trial, factory, k), env_));
   }
   teams_.push_back(agents_.size());
 }

@@ -251,6 +251,16 @@ const RunResult& robot_result(const RecordedRun& run, std::size_t k) {
   return k == 0 ? run.result : run.trace.agents[k].result;
 }
 
+// the run's information as robot `index` of its team ran: in a mixed team, its own algorithm
+RunInfo robot_info(const RecordedRun& run, int index) {
+  RunInfo info = run.info;
+  info.agent = index;
+  if (!run.scenario.members.empty()) {
+    info.algorithm = algorithm_name(member_scenario(run.scenario, index).controller.algorithm);
+  }
+  return info;
+}
+
 std::size_t state_index(const std::vector<std::string>& names, const std::string& state) {
   return static_cast<std::size_t>(std::find(names.begin(), names.end(), state) - names.begin());
 }
@@ -548,7 +558,7 @@ json robot_json(const RecordedRun& run, std::size_t k, const std::vector<std::st
   const bool declared = std::isfinite(agent.declared.x) && std::isfinite(agent.declared.y);
   return {{"agent", agent.index},
           {"color", robot_color(k)},
-          {"result", detail::result_json(robot_result(run, k), run.info)},
+          {"result", detail::result_json(robot_result(run, k), robot_info(run, agent.index))},
           {"start",
            {{"x", rounded(agent.start.x, 1e-5)},
             {"y", rounded(agent.start.y, 1e-5)},
@@ -741,8 +751,13 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
     const RunResult& r = robot_result(run, k);
     entries.push_back({"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + robot_color(k) +
                            "\" stroke-width=\"3\"/>",
-                       "robot " + std::to_string(agents[k].index) + ": " +
-                           std::string(outcome_name(r.outcome)) + " at " + num(r.time, 1) + " s"});
+                       "robot " + std::to_string(agents[k].index) +
+                           // a mixed team: each robot's own algorithm
+                           (run.scenario.members.empty()
+                                ? std::string()
+                                : " (" + robot_info(run, agents[k].index).algorithm + ")") +
+                           ": " + std::string(outcome_name(r.outcome)) + " at " +
+                           num(r.time, 1) + " s"});
   }
   if (!run.trace.snapshots.empty()) {
     entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +

@@ -449,5 +449,103 @@ TEST(Team, BadTeamsAndStartsAreRefusedNamingTheKey) {
   refused({set("start.condition", std::string("in_odor"))}, "start.condition");
 }
 
+Setting setting(const char* key, ConfigValue v) {
+  return Setting{key, std::move(v), false, "test", Layer::kCommandLine};
+}
+
+// A mixed team: robot 1 runs surge-spiral with its own d_lost beside robot 0's casting. With
+// contacts off the robots do not meet, so each takes exactly the steps it takes in a team of
+// its own algorithm and keys: its own keys reach it and no other robot.
+TEST(Team, ARobotOfAMixedTeamRunsItsOwnAlgorithmAndKeys) {
+  const auto team = [](std::vector<Setting> extra) {
+    std::vector<Setting> settings{setting("team.count", std::int64_t{2}),
+                                  setting("team.contact", std::string("off")),
+                                  setting("supervisor.timeout", 300.0)};
+    settings.insert(settings.end(), extra.begin(), extra.end());
+    return build_scenario(settings);
+  };
+  const Scenario mixed = team({setting("member.1.controller.algorithm", std::string("surge-spiral")),
+                               setting("member.1.surge_spiral.d_lost", 0.5)});
+  const Scenario casting = team({});
+  const Scenario spiral = team({setting("controller.algorithm", std::string("surge-spiral")),
+                                setting("surge_spiral.d_lost", 0.5)});
+  for (std::uint64_t t = 0; t < 3; ++t) {
+    const std::vector<RunResult> m = run_team(mixed, kSeed, t);
+    const std::vector<RunResult> c = run_team(casting, kSeed, t);
+    const std::vector<RunResult> sp = run_team(spiral, kSeed, t);
+    ASSERT_EQ(m.size(), 2u);
+    expect_same(m[0], c[0]);
+    expect_same(m[1], sp[1]);
+  }
+  // the robot's scenario is the team's with its keys; robot 0's is the team's
+  EXPECT_EQ(member_scenario(mixed, 1).controller.algorithm, Algorithm::kSurgeSpiral);
+  EXPECT_EQ(member_scenario(mixed, 0).controller.algorithm, Algorithm::kCasting);
+  // a mixed team is another run: its identity differs, and it reads back from its own file
+  EXPECT_NE(canonical_config(mixed), canonical_config(casting));
+  Scenario back = team({});
+  std::vector<Setting> again;
+  for_each_value(mixed, [&](const FieldValue& f) {
+    if (std::string(f.table).starts_with("member.")) {
+      again.push_back(Setting{std::string(f.table) + "." + std::string(f.name), f.value, false,
+                              "test", Layer::kFile});
+    }
+  });
+  EXPECT_EQ(again.size(), 2u);
+  for (const Setting& x : again) set_field(back, x.key, x.value);
+  EXPECT_EQ(canonical_config(back), canonical_config(mixed));
+  EXPECT_NE(scenario_to_toml(mixed).find("[member.1.surge_spiral]"), std::string::npos);
+}
+
+TEST(Team, ARobotWithItsOwnStartIsReleasedThere) {
+  const Scenario s = build_scenario({setting("team.count", std::int64_t{3}),
+                                     setting("member.2.robot.start_x", 12.0),
+                                     setting("member.2.robot.start_y", 1.0),
+                                     setting("member.2.robot.start_heading_deg", 90.0)});
+  const std::vector<Pose> starts = point_starts(s);
+  ASSERT_EQ(starts.size(), 3u);
+  // robots 0 and 1 in the line, robot 2 where it says
+  EXPECT_EQ(starts[0].x, s.robot.start.x);
+  EXPECT_NEAR(std::hypot(starts[1].x - starts[0].x, starts[1].y - starts[0].y), s.team.spacing,
+              1e-12);
+  EXPECT_EQ(starts[2].x, 12.0);
+  EXPECT_EQ(starts[2].y, 1.0);
+  EXPECT_NEAR(starts[2].heading, kPi / 2, 1e-12);
+  World w({&s}, kSeed, 0);
+  EXPECT_EQ(w.agent(2).robot().pose.x, 12.0);
+  EXPECT_EQ(w.agent(2).robot().pose.y, 1.0);
+}
+
+TEST(Team, BadMemberKeysAreRefusedNamingTheKey) {
+  const auto refused = [](const std::vector<Setting>& settings, const std::string& key) {
+    try {
+      build_scenario(settings);
+      ADD_FAILURE() << "accepted; expected an error naming " << key;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  const Setting two = setting("team.count", std::int64_t{2});
+  const std::string spiral = "surge-spiral";
+  // no such robot, robot 0 (the scenario's own keys), no robot number
+  refused({two, setting("member.2.controller.algorithm", spiral)}, "member.2.controller.algorithm");
+  refused({two, setting("member.0.controller.algorithm", spiral)}, "member.0.controller");
+  refused({two, setting("member.x.controller.algorithm", spiral)}, "member.x.controller");
+  // the world's and the team's keys are one for all; so is the body's radius
+  refused({two, setting("member.1.wind.vx", 0.5)}, "member.1.wind.vx");
+  refused({two, setting("member.1.team.range", 1.0)}, "member.1.team.range");
+  refused({two, setting("member.1.robot.radius", 0.1)}, "member.1.robot.radius");
+  // an unknown key, a bad value, an unknown algorithm
+  refused({two, setting("member.1.casting.nope", 1.0)}, "member.1.casting.nope");
+  refused({two, setting("member.1.casting.d_lost", -1.0)}, "member.1.casting.d_lost");
+  refused({two, setting("member.1.controller.algorithm", std::string("zigzag9"))},
+          "member.1.controller.algorithm");
+  // an own start inside robot 0, outside the arena, or in a start region
+  refused({two, setting("member.1.robot.start_y", 0.05)}, "member.1.robot.start_x");
+  refused({two, setting("member.1.robot.start_y", 5.0)}, "member.1");
+  refused({two, setting("start.region", std::string("rectangle")),
+           setting("member.1.robot.start_x", 12.0)},
+          "member.1.robot.start_x");
+}
+
 }  // namespace
 }  // namespace plumetrace

@@ -215,6 +215,16 @@ struct StartParams {
   }
 };
 
+/// One robot's own value of a key, in a mixed team (docs/agents.md, "Mixed teams").
+struct MemberSetting {
+  int robot = 0;        ///< the robot, 1 .. team.count - 1
+  std::string key;      ///< the key it sets, "controller.algorithm"
+  std::string table;    ///< its table as files write it, "member.2.controller"
+  std::string name;     ///< its name in that table, "algorithm"
+  std::string help;     ///< the key's help
+  ConfigValue value;    ///< the value, in file units (as get_field gives it)
+};
+
 /// Everything one run depends on besides (seed, trial); defaults are the paper's setup.
 struct Scenario {
   SimParams sim;                 ///< time stepping
@@ -229,6 +239,10 @@ struct Scenario {
   TeamParams team;               ///< several robots on one plume
   SupervisorParams supervisor;   ///< when a run ends
   ControllerParams controller;   ///< algorithm and its parameters
+  /// The robots' own keys (a mixed team): `member.K.TABLE.KEY` sets TABLE.KEY for robot K
+  /// alone; robot 0 and every key a robot does not set take the scenario's value. Sorted by
+  /// robot, then key (docs/agents.md, "Mixed teams").
+  std::vector<MemberSetting> members;
 
   /// Every config key, in file order: each table, then the keys its params struct declares; the
   /// one list used by files, CLI and Python. The controllers' tables follow "controller", one
@@ -332,6 +346,18 @@ ConfigValue get_field(const Scenario& scenario, std::string_view key);
 
 /// Checks every key's range and the relations between keys; throws ConfigError.
 void validate(const Scenario& scenario);
+
+/// The scenario robot `robot` of its team runs: the scenario with that robot's own keys
+/// (Scenario::members) set, and no members; the scenario itself for a robot with none.
+Scenario member_scenario(const Scenario& scenario, int robot);
+
+/// True when robot `robot` sets its own start (member.K.robot.start_x, _y or _heading_deg).
+bool has_own_start(const Scenario& scenario, int robot);
+
+/// Where the robots of a team start when start.region = "point": robot 0 at robot.start, the
+/// others beside it (team.spacing), alternately left and right of its heading, or at their own
+/// start where they set one. Headings are robot.start's (a random heading is drawn later).
+std::vector<Pose> point_starts(const Scenario& scenario);
 
 /// One key's value as it would be written to a file, with its table, name and help.
 struct FieldValue {

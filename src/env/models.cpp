@@ -54,6 +54,8 @@ OdorRegistry& odor_field_registry() {
 
 Choices wind_model_names() { return wind_field_registry().names(); }
 
+Choices odor_model_names() { return odor_field_registry().names(); }
+
 void WindParams::fields(FieldVisitor& v) {
   const WindRegistry& registry = wind_field_registry();
   v("model", model, kWindModelHelp, registry.names());

@@ -302,8 +302,9 @@ Environment make_environment(const Scenario& scenario, std::uint64_t seed, std::
   Environment env;
   env.wind = make_wind_field(scenario.wind, wind_region(scenario.arena),
                              Rng(derive_seed(seed, trial, Stream::kWind)));
-  env.odor = make_odor_field("filament", scenario.plume, scenario.source, scenario.arena.x_max,
-                             derive_seed(seed, trial, Stream::kPlume));
+  const auto model = static_cast<std::size_t>(scenario.plume.model);  // plume.model
+  env.odor = make_odor_field(odor_field_registry()[model].name, scenario.plume, scenario.source,
+                             scenario.arena.x_max, derive_seed(seed, trial, Stream::kPlume));
   return env;
 }
 

@@ -15,6 +15,14 @@ inline constexpr double kMaxReleaseRate = 1e6;
 inline constexpr int kMaxCapacity = 10'000'000;
 
 /// Named sets of plume parameters (docs/model.md section 11).
+/// Which odor model: its place in odor_field_registry() (env/odor.hpp); the built-in one.
+enum class OdorModel : int {
+  kFilament = 0,  ///< the filament plume of the paper (docs/model.md section 4)
+};
+
+/// The registered odor models' names, in the order of odor_field_registry().
+Choices odor_model_names();
+
 enum class PlumePreset {
   /// the default: the plume of the default reading (docs/fidelity.md, "Which reading won"),
   /// the plugin's plume with the amount never applied (s = 1), sigma_p = 0.02, printed kernel
@@ -82,6 +90,9 @@ struct SourceParams {
 /// preset, the plume of the default reading (docs/fidelity.md).
 struct PlumeParams {
   /// Preset the rows below started from.
+  /// Odor model. why: the paper's filament plume is the one registered (issue 24: every model
+  /// family is chosen by a key).
+  OdorModel model = OdorModel::kFilament;
   PlumePreset preset = PlumePreset::kLochmatter2008;
   /// Filaments released per second (1/s).
   double release_rate = 100.0;
@@ -124,6 +135,7 @@ struct PlumeParams {
   /// The config keys (core/config.hpp).
   template <class V>
   void fields(V& v) {
+    v("model", model, "odor model (the rows below are the filament plume's)", odor_model_names());
     v("preset", preset, "preset the plume rows start from", {"lochmatter2008", "paper-literal"});
     v("release_rate", release_rate, "filaments released per second (1/s)",
       NumberSpec{.min = 0.0, .max = kMaxReleaseRate, .min_open = true});

@@ -1501,6 +1501,18 @@ PYBIND11_MODULE(_core, m) {
         "registers a Python controller: its keys (dicts of plumetrace.Param._spec) and its "
         "factory f(values: dict, rng)");
   m.def(
+      "renamed_key",
+      [](const std::string& key) -> std::optional<std::pair<std::string, std::string>> {
+        for (const pt::RenamedKey& r : pt::renamed_keys()) {
+          if (r.old_key == key) {
+            return std::make_pair(std::string(r.new_key), pt::renamed_key_warning(r));
+          }
+        }
+        return std::nullopt;
+      },
+      "for a key renamed since the last version: (its new name, the deprecation warning); else "
+      "None");
+  m.def(
       "scenario_warnings",
       [](const std::optional<std::string>& path, const py::list& overrides) {
         return pt::scenario_warnings(scenario_of(path, overrides));

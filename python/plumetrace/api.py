@@ -79,6 +79,11 @@ class Scenario:
         return list(_core.scenario_warnings(self._path, self._overrides))
 
     def __getitem__(self, key):
+        renamed = _core.renamed_key(str(key))
+        if renamed is not None:
+            # why: an old name reads as it sets, for one version, with the warning it sets with
+            warnings.warn(renamed[1], DeprecationWarning, stacklevel=2)
+            key = renamed[0]
         node = self.to_dict()
         for part in str(key).split("."):
             if not isinstance(node, dict) or part not in node:

@@ -283,3 +283,34 @@ def test_a_snapshot_dict_comes_back_as_a_run_takes_it():
 def test_a_snapshot_that_is_no_snapshot_is_refused_naming_the_key(shown, error, says):
     with pytest.raises(error, match=says):
         snapshot_of(Shows(shown))
+
+
+# -- mixed teams: a robot's own keys (docs/agents.md, "Mixed teams") ----------------------------
+
+def test_a_robots_own_keys_set_and_read_by_their_dotted_names_and_reach_that_robot_alone():
+    s = pt.Scenario(team__count=2, team__contact="off", supervisor__timeout=200.0)
+    s["member.1.controller.algorithm"] = "surge-spiral"
+    s["member.1.surge_spiral.d_lost"] = 0.5
+    assert s["member.1.controller.algorithm"] == "surge-spiral"
+    assert s.to_dict()["member"]["1"]["surge_spiral"]["d_lost"] == 0.5
+    assert s["controller.algorithm"] == "casting"
+    assert "[member.1.controller]" in s.to_toml()
+    # robot 1 of the mixed team takes the steps robot 1 of a surge-spiral team takes (contacts
+    # off, so the robots never meet; its own streams are robot 1's either way)
+    spiral = pt.Scenario(team__count=2, team__contact="off", supervisor__timeout=200.0,
+                         controller__algorithm="surge-spiral", surge_spiral__d_lost=0.5)
+    mixed_rows = pt.sweep({"team.count": [2]}, base=s, runs=2, seed=3).to_numpy()
+    spiral_rows = pt.sweep({"team.count": [2]}, base=spiral, runs=2, seed=3).to_numpy()
+    one = mixed_rows["agent"] == 1
+    assert one.sum() == 2
+    np.testing.assert_array_equal(mixed_rows["d_t"][one], spiral_rows["d_t"][spiral_rows["agent"] == 1])
+    np.testing.assert_array_equal(mixed_rows["time_s"][one],
+                                  spiral_rows["time_s"][spiral_rows["agent"] == 1])
+
+
+def test_a_robots_own_key_of_the_world_or_of_a_robot_the_team_lacks_is_refused_naming_it():
+    s = pt.Scenario(team__count=2)
+    with pytest.raises(pt.ConfigError, match="member.1.wind.vx"):
+        s["member.1.wind.vx"] = 0.5
+    with pytest.raises(pt.ConfigError, match="member.3.controller.algorithm"):
+        s["member.3.controller.algorithm"] = "surge-cast"

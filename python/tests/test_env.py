@@ -361,6 +361,9 @@ def test_the_meander_keys_old_names_still_work_and_warn_naming_the_new_ones(capf
     err = capfd.readouterr().err
     assert "wind.meander_gain is deprecated: write meander.gain" in err
     assert "wind.meander_nx is deprecated: write meander.nx" in err
+    # an old name reads too, with the same words as a DeprecationWarning
+    with pytest.warns(DeprecationWarning, match="wind.meander_gain is deprecated: write meander.gain"):
+        assert s["wind.meander_gain"] == 0.05
 
 
 # -- issue 24: what the environment observes, where it starts, declaring -----------------------

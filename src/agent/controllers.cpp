@@ -58,9 +58,10 @@ std::vector<Algorithm> builtin_algorithms() {
 
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng) {
   const ControllerRegistry& registry = controller_registry();
+  // why: an algorithm no entry has is an error, never another algorithm run in its place
   const auto i = static_cast<std::size_t>(params.algorithm);
-  const std::size_t chosen = i < registry.size() ? i : 0;
-  return registry[chosen].make(params.params.at(registry, chosen), rng);
+  const auto& entry = registry.at(i, "algorithm");
+  return entry.make(params.params.at(registry, i), rng);
 }
 
 }  // namespace plumetrace

@@ -262,6 +262,7 @@ class World {
   std::vector<char> hit_;          // contact resolution: the agent's body would overlap
   std::vector<std::size_t> live_;  // contact resolution: the team's running agents
   std::vector<Vec2> slid_;         // contact resolution: the agent's move after sliding
+  std::vector<double> move_;       // contact resolution: the length of the agent's move
   std::vector<Vec2> normals_;      // contact resolution: toward the teammates a move meets
   std::vector<double> gaps_;       // contact resolution: the gaps to them
 };

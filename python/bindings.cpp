@@ -767,7 +767,8 @@ void register_controller(const std::string& name, const py::list& keys, py::obje
   pt::ControllerRegistry& registry = pt::controller_registry();
   // a table of the scenario's own ("robot", "controller"), not of a controller
   const std::string table = pt::ControllerRegistry::table_of(name);
-  bool scenario_table = false;
+  // why: "member" begins a robot's own keys (member.K.TABLE.KEY), so it is no table of a model
+  bool scenario_table = table == "member";
   pt::for_each_value(pt::Scenario{}, [&](const pt::FieldValue& f) {
     scenario_table = scenario_table || f.table == table;
   });

@@ -161,6 +161,9 @@ def test_registering_again_replaces_and_bad_registrations_name_the_problem():
     for name, message in [("surge-cast", "taken by a controller of the library"),
                           ("robot", "'robot' is a table of the scenario"),
                           ("controller", "is a table of the scenario"),
+                          ("member", "'member' is a table of the scenario"),
+                          ("meander", "is a table of the scenario"),
+                          ("first-order", "is a table of the scenario"),
                           ("two words", "letters, digits"), ("", "letters, digits")]:
         with pytest.raises(pt.ConfigError, match=message):
             pt.register_controller(name, One)

@@ -100,7 +100,7 @@ void check_sweep_def(const SweepDef& def, const std::string& where) {
   for (const auto& axis : def.axes) {
     for (const auto& v : axis.values) {
       try {
-        set_field(probe, axis.key, v);
+        set_field(probe, axis.key, v, where + ": axis " + axis.key);
       } catch (const ConfigError& e) {
         fail("axis " + axis.key + ": " + e.what());
       }

@@ -473,6 +473,11 @@ void set_field(Scenario& scenario, std::string_view key, const ConfigValue& valu
   set(scenario, key, value, false);
 }
 
+void set_field(Scenario& scenario, std::string_view key, const ConfigValue& value,
+               const std::string& origin) {
+  set(scenario, key, value, false, origin);
+}
+
 void set_field_text(Scenario& scenario, std::string_view key, std::string_view text) {
   set(scenario, key, std::string(text), true);
 }

@@ -338,6 +338,10 @@ std::string renamed_key_warning(const RenamedKey& key);
 /// Sets one key from a typed value; throws ConfigError naming the key and the allowed range.
 void set_field(Scenario& scenario, std::string_view key, const ConfigValue& value);
 
+/// As above; a renamed key's warning names `origin` (a file and what in it).
+void set_field(Scenario& scenario, std::string_view key, const ConfigValue& value,
+               const std::string& origin);
+
 /// Sets one key from text as typed on the command line ("0.5", "casting", "inf").
 void set_field_text(Scenario& scenario, std::string_view key, std::string_view text);
 

@@ -588,7 +588,9 @@ TEST(ClaimRules, DirectionalVerdictsMoveOnlyTowardTheTruthAsRunsGrow) {
         sets["D"].points[i] = make_point(runs, runs, i < 4 ? 1.35 : 1.35 * (1 + effect), 0.1);
       }
       const Verdict v = claim(sets, 5).verdict;
-      if (seen != Verdict::kUnclear) EXPECT_EQ(v, seen) << effect << " at " << runs;
+      if (seen != Verdict::kUnclear) {
+        EXPECT_EQ(v, seen) << effect << " at " << runs;
+      }
       if (v != Verdict::kUnclear) seen = v;
     }
     EXPECT_EQ(seen, effect > 0 ? Verdict::kHolds : Verdict::kDoesNotHold) << effect;

@@ -1093,6 +1093,25 @@ TEST(Viewer, PageCarriesEveryRobotAndTheControllersLayers) {
   EXPECT_TRUE(alone["robots"][0]["declared"].is_null());
 }
 
+// a mixed team (docs/agents.md, "Mixed teams"): the page and the figure name each robot's
+// algorithm; a team of one algorithm names none
+TEST(Viewer, AMixedTeamNamesEachRobotsAlgorithm) {
+  RecordedRun run = recorded_believers();
+  ASSERT_EQ(run.scenario.team.count, 3);
+  const json same = page_data(viewer_html(run, {}));
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(same["robots"][k]["result"]["algorithm"], run.info.algorithm) << k;
+  }
+  set_field(run.scenario, "member.2.controller.algorithm", std::string("surge-cast"));
+  const json mixed = page_data(viewer_html(run, {}));
+  EXPECT_EQ(mixed["robots"][0]["result"]["algorithm"], run.info.algorithm);
+  EXPECT_EQ(mixed["robots"][1]["result"]["algorithm"], run.info.algorithm);
+  EXPECT_EQ(mixed["robots"][2]["result"]["algorithm"], "surge-cast");
+  const std::string svg = figure_svg(run, {});
+  EXPECT_NE(svg.find("robot 2 (surge-cast): "), std::string::npos);
+  EXPECT_EQ(figure_svg(recorded_believers(), {}).find("robot 2 ("), std::string::npos);
+}
+
 TEST(Viewer, FigureDrawsEveryRobotInItsColour) {
   const RecordedRun run = recorded_believers();
   const std::string svg = figure_svg(run, {});

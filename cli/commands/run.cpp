@@ -84,7 +84,7 @@ int RunCommand::run() {
     RunInfo robot = info;
     robot.agent = r.agent;
     // a robot of a mixed team names its own algorithm
-    robot.algorithm = algorithm_name(member_scenario(s, r.agent).controller.algorithm);
+    if (std::string own = own_algorithm(s, r.agent); !own.empty()) robot.algorithm = own;
     if (json) {
       std::cout << result_to_json(r, robot) << std::endl;
     } else {

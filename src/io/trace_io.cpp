@@ -110,9 +110,7 @@ json agent_result_json(const RunResult& result, const RunInfo& info, int agent,
                        const Scenario& scenario) {
   json r = result_json(result, info);
   r["agent"] = agent;
-  if (!scenario.members.empty()) {
-    r["algorithm"] = algorithm_name(member_scenario(scenario, agent).controller.algorithm);
-  }
+  if (std::string own = own_algorithm(scenario, agent); !own.empty()) r["algorithm"] = own;
   return r;
 }
 

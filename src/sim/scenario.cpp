@@ -526,6 +526,15 @@ Scenario member_scenario(const Scenario& scenario, int robot) {
   return s;
 }
 
+std::string own_algorithm(const Scenario& scenario, int robot) {
+  for (const MemberSetting& m : scenario.members) {
+    if (m.robot == robot && m.key == "controller.algorithm") {
+      if (const auto* name = std::get_if<std::string>(&m.value)) return *name;
+    }
+  }
+  return {};
+}
+
 bool has_own_start(const Scenario& scenario, int robot) {
   return std::any_of(scenario.members.begin(), scenario.members.end(),
                      [&](const MemberSetting& m) {

@@ -255,8 +255,8 @@ const RunResult& robot_result(const RecordedRun& run, std::size_t k) {
 RunInfo robot_info(const RecordedRun& run, int index) {
   RunInfo info = run.info;
   info.agent = index;
-  if (!run.scenario.members.empty()) {
-    info.algorithm = algorithm_name(member_scenario(run.scenario, index).controller.algorithm);
+  if (std::string own = own_algorithm(run.scenario, index); !own.empty()) {
+    info.algorithm = std::move(own);
   }
   return info;
 }
@@ -747,15 +747,17 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
                            "\" stroke-width=\"3\"/>",
                        names[i].empty() ? "(no state)" : names[i]});
   }
+  // a mixed team: a robot runs an algorithm of its own
+  bool mixed = false;
+  for (const auto& a : agents) mixed = mixed || !own_algorithm(run.scenario, a.index).empty();
   for (std::size_t k = 0; k < agents.size() && team; ++k) {
     const RunResult& r = robot_result(run, k);
     entries.push_back({"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + robot_color(k) +
                            "\" stroke-width=\"3\"/>",
                        "robot " + std::to_string(agents[k].index) +
                            // a mixed team: each robot's own algorithm
-                           (run.scenario.members.empty()
-                                ? std::string()
-                                : " (" + robot_info(run, agents[k].index).algorithm + ")") +
+                           (mixed ? " (" + robot_info(run, agents[k].index).algorithm + ")"
+                                  : std::string()) +
                            ": " + std::string(outcome_name(r.outcome)) + " at " +
                            num(r.time, 1) + " s"});
   }

@@ -355,6 +355,10 @@ void validate(const Scenario& scenario);
 /// (Scenario::members) set, and no members; the scenario itself for a robot with none.
 Scenario member_scenario(const Scenario& scenario, int robot);
 
+/// The algorithm robot `robot` sets as its own (member.K.controller.algorithm); empty when it
+/// runs the team's.
+std::string own_algorithm(const Scenario& scenario, int robot);
+
 /// True when robot `robot` sets its own start (member.K.robot.start_x, _y or _heading_deg).
 bool has_own_start(const Scenario& scenario, int robot);
 

@@ -419,15 +419,17 @@ TEST(Team, AFirstOrderSensorDelaysTheFirstDetection) {
   EXPECT_GT(later, 0);
 }
 
+// the settings are refused before any run, with a message naming `key`
+void refused(const std::vector<Setting>& settings, const std::string& key) {
+  try {
+    build_scenario(settings);
+    ADD_FAILURE() << "accepted; expected an error naming " << key;
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
+}
+
 TEST(Team, BadTeamsAndStartsAreRefusedNamingTheKey) {
-  const auto refused = [](const std::vector<Setting>& settings, const std::string& key) {
-    try {
-      build_scenario(settings);
-      ADD_FAILURE() << "accepted; expected an error naming " << key;
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-    }
-  };
   const auto set = [](const char* key, ConfigValue v) {
     return Setting{key, std::move(v), false, "test", Layer::kCommandLine};
   };
@@ -516,14 +518,6 @@ TEST(Team, ARobotWithItsOwnStartIsReleasedThere) {
 }
 
 TEST(Team, BadMemberKeysAreRefusedNamingTheKey) {
-  const auto refused = [](const std::vector<Setting>& settings, const std::string& key) {
-    try {
-      build_scenario(settings);
-      ADD_FAILURE() << "accepted; expected an error naming " << key;
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-    }
-  };
   const Setting two = setting("team.count", std::int64_t{2});
   const std::string spiral = "surge-spiral";
   // no such robot, robot 0 (the scenario's own keys), no robot number

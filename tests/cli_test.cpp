@@ -417,6 +417,34 @@ TEST(Study, TheMeanderStudyRunsAndDrawsItsReport) {
   }
 }
 
+TEST(Study, TheMultirobotStudyRunsAndDrawsItsReport) {
+  const std::string out = testing::temp_path("multirobot", "");
+  const Output o = cli("study " + std::string(PLUMETRACE_SOURCE_DIR) +
+                       "/studies/multirobot --runs 2 --out " + out + " --quiet");
+  ASSERT_EQ(o.code, 0) << o.err;
+  // 2 winds x 3 algorithms x 5 team sizes x contacts on and off, 2 runs each
+  EXPECT_NE(o.out.find("multirobot: 120 runs"), std::string::npos) << o.out;
+  const std::string md = testing::read_file(out + "/report.md");
+  EXPECT_EQ(md.rfind("# Several robots on one plume: ", 0), 0u) << md.substr(0, 200);
+  // a row per algorithm, contact setting and team size in each wind's table
+  for (const char* alg : {"casting", "surge-spiral", "surge-cast"}) {
+    for (const char* contact : {"on", "off"}) {
+      for (int robots = 1; robots <= 5; ++robots) {
+        const std::string row = "| " + std::string(alg) + " | " + contact + " | " +
+                                std::to_string(robots) + " | ";
+        std::size_t rows = 0;
+        for (auto at = md.find(row); at != std::string::npos; at = md.find(row, at + 1)) ++rows;
+        EXPECT_EQ(rows, 2u) << row;
+      }
+    }
+  }
+  for (const char* sweep : {"L", "M"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/figures/multirobot_" + std::string(sweep) +
+                                        ".png"))
+        << sweep;
+  }
+}
+
 #ifdef PLUMETRACE_WITH_ZIGZAG
 // this build runs the tests of this file against examples/zigzag, the command with one more
 // controller: its keys are config keys like the built-ins'

@@ -10,16 +10,15 @@ Newcombe's interval of a difference of success rates (plumetrace.evidence; docs/
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 from typing import Optional
 
 from plumetrace import evidence
-from plumetrace._files import (MAX_RESULTS_BYTES, BadPath, exit_status, output_folder,
-                               read_input)
+from plumetrace._files import MAX_RESULTS_BYTES, output_folder, read_input
 
 from plumetrace.report.figures import _new_figure, _save
-from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
+from plumetrace.report.page import (Fig, Para, Section, Table, _doc_link,
+                                    study_report_main, write_pages)
 from plumetrace.report.wording import change, difference, points
 
 STRENGTH_KEY = "meander.gain"
@@ -287,14 +286,5 @@ def build_report(out_dir) -> list:
 
 
 def main(argv: Optional[list] = None) -> int:
-    args = sys.argv[1:] if argv is None else argv
-    if len(args) != 1:
-        print("usage: python -m plumetrace.studies.meander OUT_DIR", file=sys.stderr)
-        return 2
-    try:
-        for p in build_report(args[0]):
-            print(f"wrote {p}")
-    except (MeanderReportError, BadPath, OSError) as e:
-        print(f"plumetrace.studies.meander: error: {e}", file=sys.stderr)
-        return exit_status(e)
-    return 0
+    return study_report_main(argv, build_report, (MeanderReportError,),
+                             "python -m plumetrace.studies.meander", "plumetrace.studies.meander")

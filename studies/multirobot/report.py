@@ -21,10 +21,10 @@ from pathlib import Path
 from typing import Optional
 
 from plumetrace import evidence
-from plumetrace._files import (MAX_RESULTS_BYTES, BadPath, exit_status, output_folder,
-                               read_input)
+from plumetrace._files import MAX_RESULTS_BYTES, output_folder, read_input
 from plumetrace.report.figures import _new_figure, _save
-from plumetrace.report.page import Fig, Para, Section, Table, _doc_link, write_pages
+from plumetrace.report.page import (Fig, Para, Section, Table, _doc_link,
+                                    study_report_main, write_pages)
 
 ALGORITHM, COUNT, CONTACT = "controller.algorithm", "team.count", "team.contact"
 COLORS = {"casting": "#4e79a7", "surge-spiral": "#f28e2b", "surge-cast": "#59a14f"}
@@ -267,17 +267,7 @@ def build_report(out_dir) -> list:
 
 
 def main(argv: Optional[list] = None) -> int:
-    args = sys.argv[1:] if argv is None else argv
-    if len(args) != 1:
-        print("usage: report.py OUT_DIR", file=sys.stderr)
-        return 2
-    try:
-        for p in build_report(args[0]):
-            print(f"wrote {p}")
-    except (MultirobotReportError, BadPath, OSError) as e:
-        print(f"multirobot report: error: {e}", file=sys.stderr)
-        return exit_status(e)
-    return 0
+    return study_report_main(argv, build_report, (MultirobotReportError,), "report.py", "multirobot report")
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Optional, Sequence, Union
 
-from .._files import output_folder
+from .._files import BadPath, exit_status, output_folder
 from .data import DASH, write_whole
 
 @dataclass
@@ -319,3 +319,23 @@ def write_pages(out_dir: Path, title: str, intro: list, sections: list) -> list:
     html_path = write_whole(out_dir / "report.html", render_html(title, intro, sections))
     md_path = write_whole(out_dir / "report.md", render_markdown(title, intro, sections))
     return [html_path, md_path]
+
+
+def study_report_main(argv: Optional[Sequence[str]], build, errors: tuple, usage: str,
+                      name: str) -> int:
+    """The command line of a study's report (`plumetrace study` runs it with OUT_DIR):
+    `build(OUT_DIR)` writes the pages, each printed; exit 0, 2 for bad input (no OUT_DIR, one of
+    `errors`, a malformed file) or 3 when a file cannot be read or written (exit_status)."""
+    import sys
+
+    args = sys.argv[1:] if argv is None else list(argv)
+    if len(args) != 1:
+        print(f"usage: {usage} OUT_DIR", file=sys.stderr)
+        return 2
+    try:
+        for p in build(args[0]):
+            print(f"wrote {p}")
+    except (*errors, BadPath, OSError) as e:
+        print(f"{name}: error: {e}", file=sys.stderr)
+        return exit_status(e)
+    return 0

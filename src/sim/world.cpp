@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -366,10 +367,12 @@ void World::add_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t
   agents_.push_back(std::make_unique<Agent>(scenario, seed, trial, 0, std::move(first), env_));
   for (int k = 1; k < scenario.team.count; ++k) {
     // a robot of a mixed team runs with its own keys (Scenario::members)
-    const bool own = std::any_of(scenario.members.begin(), scenario.members.end(),
-                                 [k](const MemberSetting& m) { return m.robot == k; });
-    const Scenario mine = own ? member_scenario(scenario, k) : Scenario{};
-    const Scenario& s = own ? mine : scenario;
+    std::optional<Scenario> mine;
+    if (std::any_of(scenario.members.begin(), scenario.members.end(),
+                    [k](const MemberSetting& m) { return m.robot == k; })) {
+      mine = member_scenario(scenario, k);
+    }
+    const Scenario& s = mine ? *mine : scenario;
     agents_.push_back(std::make_unique<Agent>(
         s, seed, trial, k, make_run_controller(s, seed, trial, factory, k), env_));
   }
@@ -474,12 +477,13 @@ Vec2 nearest_clear_move(Vec2 d, const std::vector<Vec2>& n, const std::vector<do
 
 void World::resolve_contacts(std::size_t begin, std::size_t end) {
   // why: set rules, so the result does not depend on the agents' order. First, a robot whose
-  // proposal would overlap a teammate where that teammate stands now slides: its move becomes
-  // the nearest one that keeps clear of every teammate where they stand (a round body pushed
-  // against another slides along it; pressed into a corner of two, it stops). Without the slide
-  // two robots pressing into each other stand still for ever with their odometers frozen, so no
-  // controller's loss rule ever turns them. All slides are computed from positions before the
-  // step, then made together. Second, every robot of a pair whose proposals would still overlap
+  // move could bring it within reach of teammates (closer than two radii plus both moves)
+  // slides: its move becomes the nearest one that closes at most half the gap to each of them
+  // where they stand now (a round body pushed against another slides along it; pressed into a
+  // corner of two, it stops; half each, so two closing on each other never overlap). Without
+  // the slide two robots pressing into each other stand still for ever with their odometers
+  // frozen, so no controller's loss rule ever turns them. All slides are computed from
+  // positions before the step, then made together. Second, every robot of a pair whose proposals would still overlap
   // keeps its position (it turns as proposed); repeat until no two overlap. Positions before
   // the step never overlap, so each round blocks at least one robot more or ends. Robots whose
   // runs have ended are out of the arena

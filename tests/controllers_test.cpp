@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -142,6 +143,15 @@ TEST(ControllerRegistry, BuiltInsAreRegisteredInTheOrderOfAlgorithm) {
   EXPECT_EQ(r.index_of<SurgeSpiralParams>(), static_cast<std::size_t>(Algorithm::kSurgeSpiral));
   EXPECT_EQ(r.index_of<SurgeCastParams>(), static_cast<std::size_t>(Algorithm::kSurgeCast));
   EXPECT_EQ(r[static_cast<std::size_t>(Algorithm::kSurgeSpiral)].table, "surge_spiral");
+}
+
+// an algorithm no entry has is an error, never another algorithm in its place
+TEST(ControllerRegistry, AnAlgorithmNoEntryHasIsRefusedNotReplaced) {
+  const auto beyond = static_cast<Algorithm>(controller_registry().size());
+  EXPECT_THROW(algorithm_name(beyond), std::invalid_argument);
+  ControllerParams params;
+  params.algorithm = beyond;
+  EXPECT_THROW(make_controller(params, Rng(1)), std::invalid_argument);
 }
 
 #ifdef PLUMETRACE_WITH_ZIGZAG

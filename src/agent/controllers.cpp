@@ -6,10 +6,9 @@ namespace {
 
 constexpr std::string_view kAlgorithmHelp = "algorithm driving the robot";
 
+// why: an algorithm no entry has is an error, never another algorithm's name
 const ControllerRegistry::Entry& entry(Algorithm algorithm) {
-  const ControllerRegistry& registry = controller_registry();
-  const auto i = static_cast<std::size_t>(algorithm);
-  return i < registry.size() ? registry[i] : registry[0];
+  return controller_registry().at(static_cast<std::size_t>(algorithm), "algorithm");
 }
 
 }  // namespace
@@ -58,10 +57,8 @@ std::vector<Algorithm> builtin_algorithms() {
 
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng) {
   const ControllerRegistry& registry = controller_registry();
-  // why: an algorithm no entry has is an error, never another algorithm run in its place
   const auto i = static_cast<std::size_t>(params.algorithm);
-  const auto& entry = registry.at(i, "algorithm");
-  return entry.make(params.params.at(registry, i), rng);
+  return entry(params.algorithm).make(params.params.at(registry, i), rng);
 }
 
 }  // namespace plumetrace

@@ -531,12 +531,13 @@ TEST(Trace, Format2TracesReadAsOneRobot) {
   EXPECT_EQ(viewer_html(two, {}), viewer_html(read_trace(path), {}));
 }
 
-TEST(Trace, DamagedTeamsAndSnapshotsAreRefusedNamingWhere) {
-  const RecordedRun run = recorded_believers();
-  const std::string path = testing::temp_path("damaged_team", ".json");
+// What reading `run`'s JSON trace, written to `path`, says once a damage has changed it: the
+// error's message, or "no error" when it reads
+std::function<std::string(const std::function<void(json&)>&)> damaged_trace_reader(
+    const RecordedRun& run, const std::string& path) {
   write_trace(path, run.trace, run.scenario, run.result, run.info);
   const json good = json::parse(testing::read_file(path));
-  const auto message = [&](const std::function<void(json&)>& damage) -> std::string {
+  return [good, path](const std::function<void(json&)>& damage) -> std::string {
     json doc = good;
     damage(doc);
     std::ofstream(path) << doc.dump();
@@ -547,6 +548,12 @@ TEST(Trace, DamagedTeamsAndSnapshotsAreRefusedNamingWhere) {
     }
     return "no error";
   };
+}
+
+TEST(Trace, DamagedTeamsAndSnapshotsAreRefusedNamingWhere) {
+  const RecordedRun run = recorded_believers();
+  const std::string path = testing::temp_path("damaged_team", ".json");
+  const auto message = damaged_trace_reader(run, path);
   EXPECT_EQ(message([](json&) {}), "no error");
   const auto has = [](const std::string& what, const std::string& part) {
     return what.find(part) != std::string::npos;
@@ -587,19 +594,7 @@ TEST(Trace, ANewerTraceFormatIsRefusedNamingTheFile) {
 TEST(Trace, DamagedFilamentsAreRefusedNamingTheFile) {
   const RecordedRun run = recorded_run();
   const std::string path = testing::temp_path("damaged", ".json");
-  write_trace(path, run.trace, run.scenario, run.result, run.info);
-  const json good = json::parse(testing::read_file(path));
-  const auto message = [&](const std::function<void(json&)>& damage) -> std::string {
-    json doc = good;
-    damage(doc);
-    std::ofstream(path) << doc.dump();
-    try {
-      read_trace(path);
-    } catch (const ConfigError& e) {
-      return e.what();
-    }
-    return "no error";
-  };
+  const auto message = damaged_trace_reader(run, path);
   EXPECT_NE(
       message([](json& d) { d["snapshots"][0]["x"] = "not base64!"; }).find("'x' is not base64"),
       std::string::npos);

@@ -147,8 +147,8 @@ void BM_TeamStep(benchmark::State& state) {
   s.supervisor.timeout = 1e5;
   validate(s);
   const bool reading = state.range(1) != 0;
-  state.SetLabel(std::to_string(s.team.count) + (reading ? " robots, concentration"
-                                                         : " robots, binary"));
+  state.SetLabel(std::to_string(s.team.count) +
+                 (reading ? " robots, concentration" : " robots, binary"));
   ControllerFactory factory;
   if (reading) {
     factory = [](const Scenario& sc, Rng rng) -> std::unique_ptr<Controller> {
@@ -168,8 +168,8 @@ std::vector<RunRow> sample_rows(std::size_t count, std::uint64_t first) {
   std::vector<RunRow> rows(count);
   for (std::size_t i = 0; i < count; ++i) {
     rows[i] = {"G", 3, first + i, 0, "0123456789abcdef", {}};
-    rows[i].result = {Outcome::kSuccess, 81.3, 9.7, 8.1, 1.2, 2, 0.4, 2540, 3, 0.0, 0.0, NAN,
-                      20080101, first + i, 0};
+    rows[i].result = {Outcome::kSuccess, 81.3,      9.7, 8.1, 1.2, 2, 0.4, 2540, 3, 0.0, 0.0, NAN,
+                      20080101,          first + i, 0};
   }
   return rows;
 }

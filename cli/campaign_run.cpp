@@ -5,10 +5,10 @@
 #include <string>
 
 #include "errors.hpp"
-#include "shell.hpp"
 #include "plumetrace/core/process.hpp"
 #include "plumetrace/paths.hpp"
 #include "progress.hpp"
+#include "shell.hpp"
 
 namespace plumetrace::cli {
 

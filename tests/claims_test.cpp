@@ -153,11 +153,11 @@ ClaimResult claim(const std::map<std::string, SetStats>& sets, int id,
   } while (0)
 
 // the verdict under rules 0.3.0 (docs/claims.md, "Two rule sets")
-#define EXPECT_VERDICT_030(sets, id, expected)                                   \
-  do {                                                                           \
-    const ClaimResult c_ = claim(sets, id, ClaimRules::kRules030);               \
-    EXPECT_EQ(verdict_name(c_.verdict), verdict_name(expected))                  \
-        << "claim " << (id) << " (rules 0.3.0): " << c_.evidence;                \
+#define EXPECT_VERDICT_030(sets, id, expected)                     \
+  do {                                                             \
+    const ClaimResult c_ = claim(sets, id, ClaimRules::kRules030); \
+    EXPECT_EQ(verdict_name(c_.verdict), verdict_name(expected))    \
+        << "claim " << (id) << " (rules 0.3.0): " << c_.evidence;  \
   } while (0)
 
 void set_profile(SetStats& s, const std::vector<int>& successes, const std::vector<double>& means,

@@ -228,8 +228,8 @@ TEST(Cli, CsvTraceHoldsStepsAndFilamentSnapshots) {
   std::istringstream steps(read_file(path));
   std::string header, line;
   std::getline(steps, header);
-  EXPECT_EQ(header.rfind("agent,time,x,y,heading,odometer,state,odor,concentration,wind_samples", 0),
-            0u);
+  EXPECT_EQ(
+      header.rfind("agent,time,x,y,heading,odometer,state,odor,concentration,wind_samples", 0), 0u);
   int rows = 0;
   while (std::getline(steps, line)) ++rows;
   // one row at release plus one per step
@@ -430,8 +430,8 @@ TEST(Study, TheMultirobotStudyRunsAndDrawsItsReport) {
   for (const char* alg : {"casting", "surge-spiral", "surge-cast"}) {
     for (const char* contact : {"on", "off"}) {
       for (int robots = 1; robots <= 5; ++robots) {
-        const std::string row = "| " + std::string(alg) + " | " + contact + " | " +
-                                std::to_string(robots) + " | ";
+        const std::string row =
+            "| " + std::string(alg) + " | " + contact + " | " + std::to_string(robots) + " | ";
         std::size_t rows = 0;
         for (auto at = md.find(row); at != std::string::npos; at = md.find(row, at + 1)) ++rows;
         EXPECT_EQ(rows, 2u) << row;
@@ -439,8 +439,7 @@ TEST(Study, TheMultirobotStudyRunsAndDrawsItsReport) {
     }
   }
   for (const char* sweep : {"L", "M"}) {
-    EXPECT_TRUE(std::filesystem::exists(out + "/figures/multirobot_" + std::string(sweep) +
-                                        ".png"))
+    EXPECT_TRUE(std::filesystem::exists(out + "/figures/multirobot_" + std::string(sweep) + ".png"))
         << sweep;
   }
 }

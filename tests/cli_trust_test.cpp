@@ -162,7 +162,8 @@ TEST(CliTrust, TraceStateNamesAreBoundedWhereTracesAreRead) {
   trace["steps"]["state_names"][0] = std::string(1 << 20, 's');
   const std::string path = testing::write_temp("big-state", ".json", trace.dump());
   expect_refused(cli("view " + path + " -o " + path + ".html"),
-                 "steps.state_names[0]: a controller's state name must have at most 64 bytes", "view");
+                 "steps.state_names[0]: a controller's state name must have at most 64 bytes",
+                 "view");
   trace["steps"]["state_names"][0] = "a\x1b[31m";
   const std::string escape = testing::write_temp("escape-state", ".json", trace.dump());
   expect_refused(cli("view " + escape + " -o " + escape + ".html"), "control character", "view");

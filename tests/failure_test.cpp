@@ -161,7 +161,7 @@ TEST(Cli, SweepThreadsAboveTheLimitExitWithBadInputNamingTheOption) {
 TEST(Agent, ANonFiniteCommandIsRefusedNamingTheValue) {
   const Scenario scenario = short_sweep()[0].points[0].scenario;
   for (const Command& command : {Command::go(NAN), Command::turn_to(INFINITY),
-                                Command::curve(-INFINITY), Command::curve(NAN)}) {
+                                 Command::curve(-INFINITY), Command::curve(NAN)}) {
     const ControllerFactory factory = [command](const Scenario&, Rng) {
       return std::make_unique<Fixed>(command);
     };

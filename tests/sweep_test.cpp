@@ -247,8 +247,8 @@ TEST(AxisReadings, AReadingReplacesOnlyTheAxesOfTheSetsItNames) {
   const ExpandedSweep c04 = expand_sweep(moved[0], {});
   EXPECT_EQ(c.points[1].config_hash, c04.points[2].config_hash);  // sigma_a = 0.1 in both
   // the set files' own axes are the reading "sets", which changes nothing
-  EXPECT_TRUE(axis_reading_sets(sets, read_axis_reading(kStudy + "/axes", kSetsAxes, sets))
-                  .empty());
+  EXPECT_TRUE(
+      axis_reading_sets(sets, read_axis_reading(kStudy + "/axes", kSetsAxes, sets)).empty());
   EXPECT_EQ(axis_reading_names(kStudy + "/axes"), std::vector<std::string>{"sigma-a-0.4"});
 }
 
@@ -289,8 +289,8 @@ TEST(AxisReadings, AReproductionRunsTheChangedSetsUnderTheMainReading) {
     // under the main reading, plugin: its amount
     EXPECT_EQ(s.points[0].scenario.plume.amount, 8.3e9) << s.def.name;
   }
-  EXPECT_EQ(axis_sweeps, (std::vector<std::string>{"@sigma-a-0.4/C", "@sigma-a-0.4/F",
-                                                   "@sigma-a-0.4/I"}));
+  EXPECT_EQ(axis_sweeps,
+            (std::vector<std::string>{"@sigma-a-0.4/C", "@sigma-a-0.4/F", "@sigma-a-0.4/I"}));
   const Reproduction none =
       plan_reproduction(study, "default", std::vector<std::string>{}, std::vector<std::string>{});
   EXPECT_EQ(none.axis_readings.size(), 1u);

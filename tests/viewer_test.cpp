@@ -442,7 +442,8 @@ TEST(Trace, ATeamsTraceReadsBackEveryRobotBitForBit) {
     }
   }
   // the robots' paths differ: each has its own table
-  EXPECT_NE(step_bits(run.trace.agents[1].steps.back()), step_bits(run.trace.agents[2].steps.back()));
+  EXPECT_NE(step_bits(run.trace.agents[1].steps.back()),
+            step_bits(run.trace.agents[2].steps.back()));
   // robot 0's table at the top, as a robot alone's; the others in "teammates", with their index
   const json doc = json::parse(testing::read_file(path));
   EXPECT_EQ(doc["plumetrace_trace"], 3);
@@ -615,11 +616,11 @@ TEST(Trace, ALongRunsTraceStaysSmall) {
   // second: 27.7 MB in trace format 1, 4.6 MB in format 2. why: a bound to catch a regression
   // of the format, not a measurement
   // the run as it was measured, under the 0.3.0 default (wind 0.9 m/s, sensor 0.02 m, zigzag)
-  const RecordedRun run = recorded_file_run(
-      "lochmatter2008.toml",
-      {parse_override("wind.vx=0.9"), parse_override("odor.height=0.02"),
-       parse_override("casting.reacquire_side=alternate")},
-      1.0);
+  const RecordedRun run =
+      recorded_file_run("lochmatter2008.toml",
+                        {parse_override("wind.vx=0.9"), parse_override("odor.height=0.02"),
+                         parse_override("casting.reacquire_side=alternate")},
+                        1.0);
   ASSERT_GT(run.result.time, 150.0);
   const std::string path = testing::temp_path("long", ".json");
   write_trace(path, run.trace, run.scenario, run.result, run.info);
@@ -925,7 +926,8 @@ TEST(Viewer, FigureDrawsEveryLayer) {
   // one polyline per stretch of one state
   std::size_t stretches = 0;
   for (std::size_t i = 1; i < run.trace.agents[0].steps.size(); ++i) {
-    stretches += i == 1 || run.trace.agents[0].steps[i].state != run.trace.agents[0].steps[i - 1].state;
+    stretches +=
+        i == 1 || run.trace.agents[0].steps[i].state != run.trace.agents[0].steps[i - 1].state;
   }
   EXPECT_EQ(count("<polyline"), stretches);
   // the filaments of the last snapshot, the wind samples, and the robot

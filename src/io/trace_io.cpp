@@ -134,8 +134,13 @@ json controller_snapshot_json(const ControllerSnapshot& c) {
   if (!s.weights.empty()) j["weights"] = numbers_json(s.weights);
   if (!s.path.empty()) j["path"] = points_json(s.path);
   if (!s.grid.empty()) {
-    j["grid"] = {{"x0", s.x0}, {"y0", s.y0}, {"dx", s.dx},
-                 {"dy", s.dy}, {"nx", s.nx}, {"ny", s.ny}, {"values", numbers_json(s.grid)}};
+    j["grid"] = {{"x0", s.x0},
+                 {"y0", s.y0},
+                 {"dx", s.dx},
+                 {"dy", s.dy},
+                 {"nx", s.nx},
+                 {"ny", s.ny},
+                 {"values", numbers_json(s.grid)}};
   }
   if (s.has_estimate) j["estimate"] = {number_or_null(s.estimate.x), number_or_null(s.estimate.y)};
   return j;
@@ -167,7 +172,8 @@ void write_json_trace(const std::string& path, const Trace& trace, const Scenari
     out << controller_snapshot_json(trace.controller_snapshots[i]).dump();
   }
   out << R"(],"declared":)" << declared_json(first.declared).dump() << R"(,"plumetrace_trace":)"
-      << kTraceFormat << R"(,"result":)" << agent_result_json(result, info, result.agent, scenario).dump()
+      << kTraceFormat << R"(,"result":)"
+      << agent_result_json(result, info, result.agent, scenario).dump()
       << R"(,"snapshot_encoding":)" << encoding.dump() << R"(,"snapshots":[)";
   for (std::size_t i = 0; i < trace.snapshots.size(); ++i) {
     const auto& snap = trace.snapshots[i];
@@ -363,8 +369,8 @@ T trace_integer(const json& v, const std::string& field, T lo, T hi) {
     ok = std::cmp_greater_equal(i, lo) && std::cmp_less_equal(i, hi);
   }
   if (!ok) {
-    throw ConfigError(field + " must be a whole number from " +
-                      std::to_string(lo) + " to " + std::to_string(hi) + " (got " + v.dump() + ")");
+    throw ConfigError(field + " must be a whole number from " + std::to_string(lo) + " to " +
+                      std::to_string(hi) + " (got " + v.dump() + ")");
   }
   return v.get<T>();
 }
@@ -653,8 +659,8 @@ RecordedRun read_trace(const std::string& path) {
       throw ConfigError("trace '" + path + "': not a plumetrace trace (no 'plumetrace_trace' key)");
     }
     const std::string where = "trace '" + path + "': ";
-    const int format = trace_integer<int>(doc.at("plumetrace_trace"), where + "plumetrace_trace",
-                                          1, std::numeric_limits<int>::max());
+    const int format = trace_integer<int>(doc.at("plumetrace_trace"), where + "plumetrace_trace", 1,
+                                          std::numeric_limits<int>::max());
     if (format > kTraceFormat) {
       throw ConfigError("trace '" + path + "': trace format " + std::to_string(format) +
                         " is newer than plumetrace " + std::string(version()) + " reads (1 to " +
@@ -677,16 +683,16 @@ RecordedRun read_trace(const std::string& path) {
       a.index = index;
       a.result = read_result(result, format, where + name, run.info);
       if (result.contains("agent") &&
-          trace_integer<int>(result.at("agent"), where + name + "result.agent", 0,
-                             kMaxTeam - 1) != index) {
+          trace_integer<int>(result.at("agent"), where + name + "result.agent", 0, kMaxTeam - 1) !=
+              index) {
         throw ConfigError(where + name + "result.agent is not the robot's index " +
                           std::to_string(index));
       }
       a.result.agent = index;
       a.steps = read_steps(table.at("steps"), format, path, name, unrecorded);
       // why: formats 1 and 2 have no start: a trace's first row is at release
-      a.start = format >= 3 ? read_pose(table.at("start"), where + name + "start")
-                            : a.steps.front().pose;
+      a.start =
+          format >= 3 ? read_pose(table.at("start"), where + name + "start") : a.steps.front().pose;
       if (format >= 3) a.declared = read_declared(table.at("declared"), where + name + "declared");
       run.trace.agents.push_back(std::move(a));
     };
@@ -717,8 +723,7 @@ RecordedRun read_trace(const std::string& path) {
       const json& snaps = doc.at("controller_snapshots");
       for (std::size_t i = 0; i < snaps.size(); ++i) {
         run.trace.controller_snapshots.push_back(read_controller_snapshot(
-            snaps[i], where + "controller_snapshots[" + std::to_string(i) + "]",
-            run.trace.agents));
+            snaps[i], where + "controller_snapshots[" + std::to_string(i) + "]", run.trace.agents));
       }
     }
 

@@ -368,7 +368,8 @@ void set_member(Scenario& scenario, std::string_view key, const ConfigValue& val
       end != digits.data() + digits.size() || robot < 1 || robot >= kMaxTeam) {
     throw ConfigError("'" + std::string(key) +
                       "': a robot's own key is member.K.TABLE.KEY with K a robot of the team, 1 "
-                      "to " + std::to_string(kMaxTeam - 1) +
+                      "to " +
+                      std::to_string(kMaxTeam - 1) +
                       " (robot 0 takes the scenario's keys; docs/agents.md, \"Mixed teams\")");
   }
   const std::string prefix = std::string(kMemberPrefix) + std::to_string(robot) + ".";
@@ -536,10 +537,9 @@ std::string own_algorithm(const Scenario& scenario, int robot) {
 }
 
 bool has_own_start(const Scenario& scenario, int robot) {
-  return std::any_of(scenario.members.begin(), scenario.members.end(),
-                     [&](const MemberSetting& m) {
-                       return m.robot == robot && m.key.starts_with("robot.start_");
-                     });
+  return std::any_of(scenario.members.begin(), scenario.members.end(), [&](const MemberSetting& m) {
+    return m.robot == robot && m.key.starts_with("robot.start_");
+  });
 }
 
 std::vector<Pose> point_starts(const Scenario& scenario) {
@@ -556,8 +556,8 @@ std::vector<Pose> point_starts(const Scenario& scenario) {
     }
     const double side = (k % 2 == 1 ? 1.0 : -1.0) * static_cast<double>((k + 1) / 2);
     const double off = side * scenario.team.spacing;
-    starts.push_back({robot.start.x + off * left.x, robot.start.y + off * left.y,
-                      robot.start.heading});
+    starts.push_back(
+        {robot.start.x + off * left.x, robot.start.y + off * left.y, robot.start.heading});
   }
   return starts;
 }
@@ -608,13 +608,13 @@ void check_team_start(const Scenario& scenario) {
         // the outermost robots: on the left k = 1, 3, ... at (k + 1) / 2 spacings, on the
         // right k = 2, 4, ... at k / 2
         throw ConfigError("team.count, team.spacing: the outermost of the " + n +
-                          " robots would start outside the arena, at (" + bound_text(p.x) +
-                          ", " + bound_text(p.y) + ") m; fewer robots, a smaller spacing or a "
+                          " robots would start outside the arena, at (" + bound_text(p.x) + ", " +
+                          bound_text(p.y) +
+                          ") m; fewer robots, a smaller spacing or a "
                           "start region (start.region)");
       }
       if (scenario.source.solid_radius > 0.0 &&
-          std::hypot(p.x - scenario.source.center.x, p.y - scenario.source.center.y) <=
-              keep_off) {
+          std::hypot(p.x - scenario.source.center.x, p.y - scenario.source.center.y) <= keep_off) {
         throw ConfigError((own ? own_keys(k) : std::string("team.count, team.spacing")) +
                           ": robot " + std::to_string(k) +
                           " would start inside the source's solid body");
@@ -690,7 +690,8 @@ void check_members(const Scenario& scenario) {
                         std::to_string(m.robot));
     }
     if (m.key.starts_with("robot.start_") && scenario.start.region != StartRegion::kPoint) {
-      throw ConfigError(key + ": a robot's own start needs start.region = 'point'; in a start "
+      throw ConfigError(key +
+                        ": a robot's own start needs start.region = 'point'; in a start "
                         "region every robot draws its start");
     }
     if (m.robot == checked) continue;

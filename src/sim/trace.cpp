@@ -84,8 +84,8 @@ TraceStep step_row(const World& world, const Agent& agent) {
   row.wind_samples = agent.time() > 0.0 ? sensor.samples() : 0;
   row.wind_body = sensor.last_sample();
   // why: at the sensor's height, where the wind sensor and the trace's wind grid sample it
-  const Vec3 wind = world.environment().wind->velocity(
-      {row.pose.x, row.pose.y, agent.scenario().odor.height});
+  const Vec3 wind =
+      world.environment().wind->velocity({row.pose.x, row.pose.y, agent.scenario().odor.height});
   row.true_wind = {wind.x, wind.y};
   return row;
 }
@@ -111,11 +111,11 @@ bool controller_snapshot(const Agent& agent, ControllerSnapshot& out) {
   }
   if (snap.nx < 0 || snap.ny < 0 ||
       snap.grid.size() != static_cast<std::size_t>(snap.nx) * static_cast<std::size_t>(snap.ny)) {
-    refuse("has a grid of " + std::to_string(snap.grid.size()) + " values for nx = " +
-           std::to_string(snap.nx) + ", ny = " + std::to_string(snap.ny));
+    refuse("has a grid of " + std::to_string(snap.grid.size()) +
+           " values for nx = " + std::to_string(snap.nx) + ", ny = " + std::to_string(snap.ny));
   }
-  if (!snap.grid.empty() && !(snap.dx > 0.0 && snap.dy > 0.0 && std::isfinite(snap.dx) &&
-                              std::isfinite(snap.dy))) {
+  if (!snap.grid.empty() &&
+      !(snap.dx > 0.0 && snap.dy > 0.0 && std::isfinite(snap.dx) && std::isfinite(snap.dy))) {
     refuse("has a grid whose cell size is not positive (dx = " + std::to_string(snap.dx) +
            ", dy = " + std::to_string(snap.dy) + ")");
   }

@@ -52,8 +52,8 @@ Agent::Agent(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial, 
       robot_{scenario.robot.start, 0.0},
       wind_rng_(derive_seed(seed, trial, Stream::kWindSensor, index)),
       wind_sensor_(scenario_.wind_sensor, *env.wind, robot_.pose, scenario_.odor.height, wind_rng_),
-      sensor_model_(
-          make_sensor_model(scenario_.odor, Rng(derive_seed(seed, trial, Stream::kOdorSensor, index)))),
+      sensor_model_(make_sensor_model(scenario_.odor,
+                                      Rng(derive_seed(seed, trial, Stream::kOdorSensor, index)))),
       controller_(std::move(controller)),
       reads_(controller_->reads()) {}
 
@@ -188,8 +188,7 @@ void Agent::slide(Vec2 to) {
   const auto& src = scenario_.source;
   const double r = scenario_.robot.radius;
   const double contact = src.solid_radius + r;
-  if ((src.solid_radius > 0.0 &&
-       std::hypot(to.x - src.center.x, to.y - src.center.y) < contact) ||
+  if ((src.solid_radius > 0.0 && std::hypot(to.x - src.center.x, to.y - src.center.y) < contact) ||
       (scenario_.supervisor.walls == WallRule::kBlock &&
        !clear_of_walls(scenario_.arena, r, to.x, to.y))) {
     block();
@@ -254,8 +253,8 @@ std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std:
     return starts;
   }
   const bool source_frame = st.frame == StartFrame::kSource;
-  const Vec2 origin = source_frame ? Vec2{scenario.source.center.x, scenario.source.center.y}
-                                   : Vec2{0.0, 0.0};
+  const Vec2 origin =
+      source_frame ? Vec2{scenario.source.center.x, scenario.source.center.y} : Vec2{0.0, 0.0};
   const auto& src = scenario.source;
   const double keep_off = std::max(src.solid_radius + r, scenario.supervisor.success_radius);
   for (int k = 0; k < n; ++k) {
@@ -281,8 +280,7 @@ std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std:
         if (contact && std::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) overlaps = true;
       }
       if (overlaps) continue;
-      if (st.condition == StartCondition::kInOdor &&
-          !sense_odor(scenario.odor, *env.odor, pose)) {
+      if (st.condition == StartCondition::kInOdor && !sense_odor(scenario.odor, *env.odor, pose)) {
         continue;
       }
       starts.push_back(pose);
@@ -290,8 +288,8 @@ std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std:
     }
     if (!found) {
       throw ConfigError(
-          "start.region, start.condition: no start found for robot " + std::to_string(k) +
-          " in " + std::to_string(kMaxStartDraws) + " draws of run seed " + std::to_string(seed) +
+          "start.region, start.condition: no start found for robot " + std::to_string(k) + " in " +
+          std::to_string(kMaxStartDraws) + " draws of run seed " + std::to_string(seed) +
           ", trial " + std::to_string(trial) +
           " (the region is mostly outside the arena, blocked, crowded or outside odor)");
     }
@@ -483,10 +481,10 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
   // corner of two, it stops; half each, so two closing on each other never overlap). Without
   // the slide two robots pressing into each other stand still for ever with their odometers
   // frozen, so no controller's loss rule ever turns them. All slides are computed from
-  // positions before the step, then made together. Second, every robot of a pair whose proposals would still overlap
-  // keeps its position (it turns as proposed); repeat until no two overlap. Positions before
-  // the step never overlap, so each round blocks at least one robot more or ends. Robots whose
-  // runs have ended are out of the arena
+  // positions before the step, then made together. Second, every robot of a pair whose proposals
+  // would still overlap keeps its position (it turns as proposed); repeat until no two overlap.
+  // Positions before the step never overlap, so each round blocks at least one robot more or ends.
+  // Robots whose runs have ended are out of the arena
   const double r = agents_[begin]->scenario().robot.radius;
   std::fill(blocked_.begin() + static_cast<std::ptrdiff_t>(begin),
             blocked_.begin() + static_cast<std::ptrdiff_t>(end), 0);
@@ -581,8 +579,8 @@ void World::send_messages(std::size_t begin, std::size_t end) {
     if (!commands_[i].send) continue;
     const Agent& from = *agents_[i];
     const TeamParams& team = from.scenario().team;
-    const auto lag = std::max<std::int64_t>(
-        1, static_cast<std::int64_t>(std::ceil(team.delay / dt_ - 1e-9)));
+    const auto lag =
+        std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(team.delay / dt_ - 1e-9)));
     const Message m{from.index(), from.time(), commands_[i].message};
     for (std::size_t j = begin; j < end; ++j) {
       if (j == i || agents_[j]->done() || !(agents_[j]->reads() & kReadsMessages)) continue;

@@ -465,12 +465,12 @@ json grid_json(const Snapshot& s) {
   bytes.reserve(s.grid.size());
   for (const double v : s.grid) {
     bytes.push_back(!std::isfinite(v) ? 255
-                    : hi > lo         ? static_cast<std::uint8_t>(std::lround((v - lo) / (hi - lo) * 254.0))
-                                      : 254);
+                    : hi > lo ? static_cast<std::uint8_t>(std::lround((v - lo) / (hi - lo) * 254.0))
+                              : 254);
   }
-  return {{"x0", s.x0}, {"y0", s.y0}, {"dx", s.dx},   {"dy", s.dy},
-          {"nx", s.nx}, {"ny", s.ny}, {"lo", lo},     {"hi", hi},
-          {"data", detail::base64(bytes)}};
+  return {{"x0", s.x0}, {"y0", s.y0}, {"dx", s.dx},
+          {"dy", s.dy}, {"nx", s.nx}, {"ny", s.ny},
+          {"lo", lo},   {"hi", hi},   {"data", detail::base64(bytes)}};
 }
 
 // points as columns to 0.1 mm
@@ -752,14 +752,13 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   for (const auto& a : agents) mixed = mixed || !own_algorithm(run.scenario, a.index).empty();
   for (std::size_t k = 0; k < agents.size() && team; ++k) {
     const RunResult& r = robot_result(run, k);
-    entries.push_back({"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + robot_color(k) +
-                           "\" stroke-width=\"3\"/>",
-                       "robot " + std::to_string(agents[k].index) +
-                           // a mixed team: each robot's own algorithm
-                           (mixed ? " (" + robot_info(run, agents[k].index).algorithm + ")"
-                                  : std::string()) +
-                           ": " + std::string(outcome_name(r.outcome)) + " at " +
-                           num(r.time, 1) + " s"});
+    entries.push_back(
+        {"<line x1=\"0\" y1=\"0\" x2=\"14\" y2=\"0\" stroke=\"" + robot_color(k) +
+             "\" stroke-width=\"3\"/>",
+         "robot " + std::to_string(agents[k].index) +
+             // a mixed team: each robot's own algorithm
+             (mixed ? " (" + robot_info(run, agents[k].index).algorithm + ")" : std::string()) +
+             ": " + std::string(outcome_name(r.outcome)) + " at " + num(r.time, 1) + " s"});
   }
   if (!run.trace.snapshots.empty()) {
     entries.push_back({std::string("<circle cx=\"7\" cy=\"0\" r=\"6\" fill=\"") + kPlumeColor +
@@ -791,9 +790,10 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
   bool any_declared = false;
   for (const auto& a : agents) any_declared |= std::isfinite(a.declared.x);
   if (any_declared) {
-    entries.push_back({"<path d=\"M7,-6 L13,0 L7,6 L1,0 z\" fill=\"#ffffff\" stroke=\"#333333\" "
-                       "stroke-width=\"2\"/>",
-                       "declared source"});
+    entries.push_back(
+        {"<path d=\"M7,-6 L13,0 L7,6 L1,0 z\" fill=\"#ffffff\" stroke=\"#333333\" "
+         "stroke-width=\"2\"/>",
+         "declared source"});
   }
   // why: about 6.5 px a character in a 12 px sans-serif
   const auto entry_width = [](const Entry& e) {
@@ -933,9 +933,9 @@ std::string figure_svg(const RecordedRun& run, const ViewerOptions& options) {
     const auto vertices = view::path_steps(steps, options.path_tolerance);
     for (std::size_t j = 1; j < vertices.size();) {
       const std::string& state = steps[vertices[j]].state;
-      svg << "<polyline stroke=\""
-          << (team ? robot_color(k) : colors[state_index(names, state)]) << "\" points=\""
-          << px(steps[vertices[j - 1]].pose.x) << "," << py(steps[vertices[j - 1]].pose.y);
+      svg << "<polyline stroke=\"" << (team ? robot_color(k) : colors[state_index(names, state)])
+          << "\" points=\"" << px(steps[vertices[j - 1]].pose.x) << ","
+          << py(steps[vertices[j - 1]].pose.y);
       for (; j < vertices.size() && steps[vertices[j]].state == state; ++j) {
         svg << " " << px(steps[vertices[j]].pose.x) << "," << py(steps[vertices[j]].pose.y);
       }

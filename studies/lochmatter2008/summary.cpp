@@ -406,19 +406,16 @@ json axis_reading_json(const AxisReading& axes, const std::vector<ExpandedSweep>
         p["value"] = st.values[i];
         points.push_back(p);
       }
-      changed.push_back({{"set", set},
-                         {"key", st.key},
-                         {"fixed_index", st.fixed_index},
-                         {"points", points}});
+      changed.push_back(
+          {{"set", set}, {"key", st.key}, {"fixed_index", st.fixed_index}, {"points", points}});
     }
     by_name[set] = std::move(st);
   }
   json doc{{"name", axes.name},
-            {"title", axes.title},
-            {"file", axes.file.empty()
-                         ? json(nullptr)
-                         : json(std::filesystem::path(axes.file).filename().string())},
-            {"sets", changed}};
+           {"title", axes.title},
+           {"file", axes.file.empty() ? json(nullptr)
+                                      : json(std::filesystem::path(axes.file).filename().string())},
+           {"sets", changed}};
   add_verdicts(doc, by_name);
   return doc;
 }
@@ -680,7 +677,8 @@ std::string sensitivity_markdown(const SensitivityMatrix& matrix, int runs, doub
      << "Each row reruns the nine experiment sets (docs/experiments.md) with " << runs
      << " runs per value under one combination of " << names
      << " (docs/experiments.md, `plumetrace sensitivity`). Cells: H holds, - does not hold, "
-        "? unclear (rules " << rules_name(kDefaultRules) << " in docs/claims.md). Computed in "
+        "? unclear (rules "
+     << rules_name(kDefaultRules) << " in docs/claims.md). Computed in "
      << static_cast<long>(elapsed) << " s.\n\n|";
   for (const auto& axis : matrix.axes) {
     std::string name = short_key(axis.key);

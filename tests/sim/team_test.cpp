@@ -252,7 +252,9 @@ TEST(Team, ADeclarationIsScoredByItsDistanceToTheSource) {
   const auto declare_at = [&](double miss) {
     World w(s, kSeed, 0,
             std::make_unique<Scripted>(
-                [=](const Observation&) { return Command::declare_source({ahead, miss}); },
+                [=](const Observation&) {
+                  return Command::declare_source({ahead, miss});
+                },
                 kReadsBinary));
     while (!w.done()) w.step();
     return w.result();
@@ -282,8 +284,8 @@ TEST(Team, WallsThatBlockKeepTheRobotInsideAndNeverEndTheRun) {
   Scenario s = scenario(Algorithm::kCasting, 60.0);
   s.supervisor.walls = WallRule::kBlock;
   // drive to the right-hand wall (world heading -pi/2 is odometry pi/2)
-  World w(s, kSeed, 0, std::make_unique<Scripted>(
-                           [](const Observation&) { return Command::go(kPi / 2); }, 0));
+  World w(s, kSeed, 0,
+          std::make_unique<Scripted>([](const Observation&) { return Command::go(kPi / 2); }, 0));
   const double r = s.robot.radius;
   while (!w.done()) {
     w.step();
@@ -292,8 +294,8 @@ TEST(Team, WallsThatBlockKeepTheRobotInsideAndNeverEndTheRun) {
   EXPECT_EQ(w.outcome(), Outcome::kTimeout);
   EXPECT_LT(w.robot().pose.y - s.arena.y_min, r + 0.01);
   s.supervisor.walls = WallRule::kEnd;
-  World end(s, kSeed, 0, std::make_unique<Scripted>(
-                             [](const Observation&) { return Command::go(kPi / 2); }, 0));
+  World end(s, kSeed, 0,
+            std::make_unique<Scripted>([](const Observation&) { return Command::go(kPi / 2); }, 0));
   while (!end.done()) end.step();
   EXPECT_EQ(end.outcome(), Outcome::kWall);
 }
@@ -466,8 +468,9 @@ TEST(Team, ARobotOfAMixedTeamRunsItsOwnAlgorithmAndKeys) {
     settings.insert(settings.end(), extra.begin(), extra.end());
     return build_scenario(settings);
   };
-  const Scenario mixed = team({setting("member.1.controller.algorithm", std::string("surge-spiral")),
-                               setting("member.1.surge_spiral.d_lost", 0.5)});
+  const Scenario mixed =
+      team({setting("member.1.controller.algorithm", std::string("surge-spiral")),
+            setting("member.1.surge_spiral.d_lost", 0.5)});
   const Scenario casting = team({});
   const Scenario spiral = team({setting("controller.algorithm", std::string("surge-spiral")),
                                 setting("surge_spiral.d_lost", 0.5)});
@@ -499,10 +502,9 @@ TEST(Team, ARobotOfAMixedTeamRunsItsOwnAlgorithmAndKeys) {
 }
 
 TEST(Team, ARobotWithItsOwnStartIsReleasedThere) {
-  const Scenario s = build_scenario({setting("team.count", std::int64_t{3}),
-                                     setting("member.2.robot.start_x", 12.0),
-                                     setting("member.2.robot.start_y", 1.0),
-                                     setting("member.2.robot.start_heading_deg", 90.0)});
+  const Scenario s = build_scenario(
+      {setting("team.count", std::int64_t{3}), setting("member.2.robot.start_x", 12.0),
+       setting("member.2.robot.start_y", 1.0), setting("member.2.robot.start_heading_deg", 90.0)});
   const std::vector<Pose> starts = point_starts(s);
   ASSERT_EQ(starts.size(), 3u);
   // robots 0 and 1 in the line, robot 2 where it says

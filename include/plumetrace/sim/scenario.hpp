@@ -217,12 +217,12 @@ struct StartParams {
 
 /// One robot's own value of a key, in a mixed team (docs/agents.md, "Mixed teams").
 struct MemberSetting {
-  int robot = 0;        ///< the robot, 1 .. team.count - 1
-  std::string key;      ///< the key it sets, "controller.algorithm"
-  std::string table;    ///< its table as files write it, "member.2.controller"
-  std::string name;     ///< its name in that table, "algorithm"
-  std::string help;     ///< the key's help
-  ConfigValue value;    ///< the value, in file units (as get_field gives it)
+  int robot = 0;      ///< the robot, 1 .. team.count - 1
+  std::string key;    ///< the key it sets, "controller.algorithm"
+  std::string table;  ///< its table as files write it, "member.2.controller"
+  std::string name;   ///< its name in that table, "algorithm"
+  std::string help;   ///< the key's help
+  ConfigValue value;  ///< the value, in file units (as get_field gives it)
 };
 
 /// Everything one run depends on besides (seed, trial); defaults are the paper's setup.

@@ -55,6 +55,15 @@ std::vector<Algorithm> builtin_algorithms() {
   return {Algorithm::kCasting, Algorithm::kSurgeSpiral, Algorithm::kSurgeCast};
 }
 
+std::vector<Algorithm> baseline_algorithms() { return {}; }
+
+std::vector<Algorithm> library_algorithms() {
+  std::vector<Algorithm> all = builtin_algorithms();
+  const std::vector<Algorithm> baselines = baseline_algorithms();
+  all.insert(all.end(), baselines.begin(), baselines.end());
+  return all;
+}
+
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng) {
   const ControllerRegistry& registry = controller_registry();
   const auto i = static_cast<std::size_t>(params.algorithm);

@@ -969,12 +969,23 @@ void for_each_value_of(const Scenario& scenario, ConfigKeys keys,
   // one) are in a run's config only when it is the one that runs, so that registering it
   // changes neither the stored config nor the hash of a run of any other controller (a store
   // made by the plain command stays the same store in a program with more controllers)
+  // The same holds for the baselines built in after the paper's three (infotaxis, ...): adding
+  // one changed no stored config of a run that does not use it. The paper's three are always
+  // written, as every store before 0.6.0 wrote them. A table is kept when robot 0 or any
+  // member of a mixed team runs its controller.
   const ControllerRegistry& registry = controller_registry();
-  const std::size_t builtins = builtin_algorithms().size();
-  const auto chosen = static_cast<std::size_t>(scenario.controller.algorithm);
+  const std::size_t always = builtin_algorithms().size();
+  std::vector<std::string> running{
+      registry[static_cast<std::size_t>(scenario.controller.algorithm)].name};
+  for (int k = 1; k < scenario.team.count; ++k) {
+    if (std::string own = own_algorithm(scenario, k); !own.empty())
+      running.push_back(std::move(own));
+  }
   std::vector<std::string> unused_tables;
-  for (std::size_t i = builtins; keys == ConfigKeys::kOfTheRun && i < registry.size(); ++i) {
-    if (i != chosen) unused_tables.push_back(registry[i].table);
+  for (std::size_t i = always; keys == ConfigKeys::kOfTheRun && i < registry.size(); ++i) {
+    if (std::find(running.begin(), running.end(), registry[i].name) == running.end()) {
+      unused_tables.push_back(registry[i].table);
+    }
   }
   for_each_value(scenario, [&](const FieldValue& v) {
     if (std::find(unused_tables.begin(), unused_tables.end(), v.table) == unused_tables.end()) {

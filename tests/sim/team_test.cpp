@@ -73,7 +73,7 @@ TEST(Team, DerivedSeedsOfAgentZeroAreTheRobotAlonesAndOthersDiffer) {
 }
 
 TEST(Team, ATeamOfOneIsTheRobotAlone) {
-  for (const Algorithm a : builtin_algorithms()) {
+  for (const Algorithm a : library_algorithms()) {
     const Scenario s = scenario(a, 300.0);
     const std::vector<RunResult> team = run_team(s, kSeed, 1);
     ASSERT_EQ(team.size(), 1u);
@@ -85,7 +85,7 @@ TEST(Team, ATeamOfOneIsTheRobotAlone) {
 }
 
 TEST(Team, WithoutContactRobotZeroOfATeamTakesTheStepsItTakesAlone) {
-  for (const Algorithm a : builtin_algorithms()) {
+  for (const Algorithm a : library_algorithms()) {
     Scenario s = scenario(a, 300.0);
     const RunResult alone = run_once(s, kSeed, 2);
     s.team.count = 4;

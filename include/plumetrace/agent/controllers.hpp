@@ -78,6 +78,15 @@ std::vector<Algorithm> all_algorithms();
 /// every registered controller.
 std::vector<Algorithm> builtin_algorithms();
 
+/// The baselines of the field built into the library after the paper's three (infotaxis, the
+/// particle filter, chemotaxis, the random walks, Hayes' team spiral: docs/algorithms.md), in
+/// registry order. Their tables are in a run's stored config only when a robot runs them, as
+/// for a controller registered outside the library.
+std::vector<Algorithm> baseline_algorithms();
+
+/// Every algorithm built into the library: builtin_algorithms(), then baseline_algorithms().
+std::vector<Algorithm> library_algorithms();
+
 /// Builds the controller of the selected algorithm with its random stream.
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng);
 

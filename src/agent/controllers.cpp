@@ -11,6 +11,12 @@ const ControllerRegistry::Entry& entry(Algorithm algorithm) {
   return controller_registry().at(static_cast<std::size_t>(algorithm), "algorithm");
 }
 
+// adds Model with its hooks: one line per built-in
+template <class Model, class Params>
+void add(ControllerRegistry& r, std::string name) {
+  r.add<Model, Params>(std::move(name), controller_hooks<Model, Params>());
+}
+
 }  // namespace
 
 ControllerRegistry& controller_registry() {
@@ -19,9 +25,9 @@ ControllerRegistry& controller_registry() {
   // of Algorithm; names, choices, tables and factories all come from here.
   static ControllerRegistry registry = [] {
     ControllerRegistry r;
-    r.add<Casting, CastingParams>("casting");
-    r.add<SurgeSpiral, SurgeSpiralParams>("surge-spiral");
-    r.add<SurgeCast, SurgeCastParams>("surge-cast");
+    add<Casting, CastingParams>(r, "casting");
+    add<SurgeSpiral, SurgeSpiralParams>(r, "surge-spiral");
+    add<SurgeCast, SurgeCastParams>(r, "surge-cast");
     return r;
   }();
   return registry;
@@ -62,6 +68,14 @@ std::vector<Algorithm> library_algorithms() {
   const std::vector<Algorithm> baselines = baseline_algorithms();
   all.insert(all.end(), baselines.begin(), baselines.end());
   return all;
+}
+
+void check_controller(const ControllerParams& params) {
+  const ControllerRegistry& registry = controller_registry();
+  const ControllerRegistry::Entry& e = entry(params.algorithm);
+  if (e.hooks.check != nullptr) {
+    e.hooks.check(params.params.at(registry, static_cast<std::size_t>(params.algorithm)));
+  }
 }
 
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng) {

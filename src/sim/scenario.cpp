@@ -770,6 +770,7 @@ void validate(const Scenario& scenario) {
             : "");
   steps("supervisor.timeout", scenario.supervisor.timeout, "");
   check_wind_field(scenario.wind, wind_region(a), dt);
+  check_controller(scenario.controller);
   const double per_step = scenario.plume.release_rate * dt;
   if (per_step > kMaxReleasePerStep) {
     throw ConfigError("plume.release_rate: must release at most " + bound_text(kMaxReleasePerStep) +

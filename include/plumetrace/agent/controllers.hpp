@@ -14,6 +14,32 @@
 
 namespace plumetrace {
 
+/// What a controller's registration carries besides its factory (Registry::Entry::hooks); each
+/// may be empty. controller_hooks<Model, Params>() fills them from the model's static members.
+struct ControllerHooks {
+  /// Refuses params (an AnyParams holding the model's params struct) with which the controller
+  /// cannot run, throwing ConfigError naming the keys: relations between its keys that their
+  /// own ranges cannot say. Empty: every combination of the keys within their ranges runs.
+  void (*check)(const AnyParams& params) = nullptr;
+};
+
+/// The controllers' hooks (core/registry.hpp).
+template <>
+struct RegistryHooks<Controller> {
+  using type = ControllerHooks;  ///< the controllers'
+};
+
+/// The hooks of controller Model with params struct Params: `check` from Model's static
+/// `check(const Params&)` where it has one, else empty.
+template <class Model, class Params>
+ControllerHooks controller_hooks() {
+  ControllerHooks hooks;
+  if constexpr (requires(const Params& p) { Model::check(p); }) {
+    hooks.check = [](const AnyParams& p) { Model::check(p.get<Params>()); };
+  }
+  return hooks;
+}
+
 /// Every controller a config can choose: a model type and its params struct, made with the run's
 /// controller stream (core/registry.hpp).
 using ControllerRegistry = Registry<Controller, Rng>;
@@ -34,7 +60,8 @@ template <class Model, class Params>
 struct RegisterController {
   /// Adds Model to controller_registry() under `name`.
   explicit RegisterController(std::string name)
-      : index(controller_registry().add<Model, Params>(std::move(name))) {}
+      : index(controller_registry().add<Model, Params>(std::move(name),
+                                                       controller_hooks<Model, Params>())) {}
   /// Its place in controller_registry().
   std::size_t index;
 };
@@ -86,6 +113,10 @@ std::vector<Algorithm> baseline_algorithms();
 
 /// Every algorithm built into the library: builtin_algorithms(), then baseline_algorithms().
 std::vector<Algorithm> library_algorithms();
+
+/// Refuses the selected algorithm's params when its check (ControllerHooks::check) does;
+/// throws ConfigError naming the keys.
+void check_controller(const ControllerParams& params);
 
 /// Builds the controller of the selected algorithm with its random stream.
 std::unique_ptr<Controller> make_controller(const ControllerParams& params, Rng rng);

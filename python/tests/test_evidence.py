@@ -142,3 +142,23 @@ def test_relative_difference_is_welchs_interval_scaled_by_the_reference_mean():
                                                              (50, 2.0, 0.1)))
     with pytest.raises(ValueError, match=r"a must be \(n, mean, sd\)"):
         ev.relative_difference((50, 2.2), (50, 2.0, 0.1), (50, 2.0, 0.1))
+
+
+def test_bootstrap_mean_interval_covers_the_mean_like_the_normal_interval_and_replays():
+    import random
+    rng = random.Random(3)
+    xs = [rng.gauss(10.0, 2.0) for _ in range(400)]
+    lo, hi = ev.bootstrap_mean_interval(xs)
+    m = sum(xs) / len(xs)
+    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1))
+    half = ev.Z95 * sd / math.sqrt(len(xs))
+    # for a normal sample of 400 the percentile interval is the normal one within a few percent
+    assert lo < m < hi
+    assert abs((hi - lo) / (2 * half) - 1.0) < 0.12, (lo, hi, half)
+    assert abs((lo + hi) / 2 - m) < 0.1 * half
+    # the same values and seed give the same interval; a constant sample gives a point
+    assert ev.bootstrap_mean_interval(xs) == (lo, hi)
+    assert ev.bootstrap_mean_interval([4.0] * 5) == (4.0, 4.0)
+    assert all(math.isnan(v) for v in ev.bootstrap_mean_interval([1.0]))
+    with pytest.raises(ValueError, match="reps"):
+        ev.bootstrap_mean_interval(xs, reps=0)

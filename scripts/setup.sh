@@ -29,6 +29,8 @@ if [[ $mode == test ]]; then
     python3-yaml python3-jsonschema
     # `pip install .` offline (pyproject.toml, setup.py) and its test in a fresh venv
     python3-pip python3-venv python3-setuptools python3-wheel
+    # the test build and that wheel's build share compiled objects (scripts/build.sh --test)
+    ccache
     clang libfuzzer-14-dev
     libopenmpi-dev openmpi-bin
     chromium

@@ -185,12 +185,11 @@ BENCHMARK(BM_Decide_levy)->Arg(0)->Arg(1);
 void BM_WholeRunWalks(benchmark::State& state) {
   Scenario s;
   s.supervisor.walls = WallRule::kBlock;
-  const char* labels[] = {"surge-cast",      "chemotaxis",    "chemotaxis binary",
-                          "crw",             "crw biased 0.5", "levy",
-                          "levy biased 0.5"};
-  const Algorithm algorithms[] = {Algorithm::kSurgeCast, Algorithm::kChemotaxis,
-                                  Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kCrw,
-                                  Algorithm::kLevy, Algorithm::kLevy};
+  const char* labels[] = {"surge-cast",     "chemotaxis", "chemotaxis binary", "crw",
+                          "crw biased 0.5", "levy",       "levy biased 0.5"};
+  const Algorithm algorithms[] = {
+      Algorithm::kSurgeCast, Algorithm::kChemotaxis, Algorithm::kChemotaxis, Algorithm::kCrw,
+      Algorithm::kCrw,       Algorithm::kLevy,       Algorithm::kLevy};
   const auto i = static_cast<std::size_t>(state.range(0));
   s.controller.algorithm = algorithms[i];
   if (i == 2) s.controller.get<ChemotaxisParams>().signal = ChemotaxisSignal::kBinary;

@@ -11,8 +11,8 @@ namespace plumetrace {
 void check_state_name(std::string_view name) {
   if (name.size() > kMaxStateName) {
     throw ConfigError("a controller's state name must have at most " +
-                      std::to_string(kMaxStateName) + " bytes (got " +
-                      std::to_string(name.size()) + ")");
+                      std::to_string(kMaxStateName) + " bytes (got " + std::to_string(name.size()) +
+                      ")");
   }
   if (control_character(name) != std::string_view::npos) {
     throw ConfigError("a controller's state name holds a control character");

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 
+#include "plumetrace/agent/robot.hpp"
 #include "support/fixed_wind.hpp"
 
 namespace plumetrace {
@@ -72,7 +73,8 @@ TEST(Chemotaxis, AnEqualMeanIsNoRise) {
   Chemotaxis c(ChemotaxisParams{}, Rng(3));
   InstantRobot robot;
   int k = 0;
-  drive(c, robot, 9, [](int) { return 0.0; }, k);  // two runs of zeros, the third begun
+  drive(
+      c, robot, 9, [](int) { return 0.0; }, k);  // two runs of zeros, the third begun
   EXPECT_EQ(c.runs(), 3);
   EXPECT_EQ(c.state(), "run");
 }
@@ -86,7 +88,8 @@ TEST(Chemotaxis, TheBinarySignalAveragesHitsAndAsksForNoConcentration) {
   InstantRobot robot;
   int k = 0;
   // one hit in the first run's four steps: a mean of 1/4
-  drive(c, robot, 5, [](int k) { return k == 2 ? 500.0 : 0.0; }, k);
+  drive(
+      c, robot, 5, [](int k) { return k == 2 ? 500.0 : 0.0; }, k);
   EXPECT_EQ(c.last_mean(), 0.25);
 }
 
@@ -95,7 +98,8 @@ TEST(Chemotaxis, ABlockedRunEndsInATumbleEvenAfterARise) {
   InstantRobot robot;
   int k = 0;
   // run 1 reads 0; run 2 begins
-  const Command second = drive(c, robot, 5, [](int) { return 0.0; }, k);
+  const Command second = drive(
+      c, robot, 5, [](int) { return 0.0; }, k);
   EXPECT_EQ(c.runs(), 2);
   FixedWind wind;
   robot.obs.concentration = 50.0;  // run 2 rises above run 1's mean...
@@ -114,7 +118,8 @@ TEST(Chemotaxis, SnapshotShowsThePlannedRunAndRecentRunsWeightedByTheirMeans) {
   EXPECT_TRUE(c.snapshot().empty());
   InstantRobot robot;
   int k = 0;
-  drive(c, robot, 9, [](int k) { return k < 4 ? 7.0 : 0.0; }, k);
+  drive(
+      c, robot, 9, [](int k) { return k < 4 ? 7.0 : 0.0; }, k);
   const Snapshot s = c.snapshot();
   ASSERT_EQ(s.path.size(), 2u);
   EXPECT_NEAR(std::hypot(s.path[1].x - s.path[0].x, s.path[1].y - s.path[0].y), 0.5, 1e-12);
@@ -123,6 +128,60 @@ TEST(Chemotaxis, SnapshotShowsThePlannedRunAndRecentRunsWeightedByTheirMeans) {
   EXPECT_EQ(s.weights[0], 7.0);
   EXPECT_EQ(s.weights[1], 0.0);
   EXPECT_EQ(s.points[0].x, 0.0);
+}
+
+// Runs chemotaxis from the origin in a smooth field C(r) = 1000 exp(-|r - source| / 2 m) without
+// walls, the robot moved by step_robot, for at most `seconds`; true when it comes within 0.3 m
+// of the source, 4 m away in a direction drawn from the seed.
+bool reaches_smooth_source(const ChemotaxisParams& p, std::uint64_t seed, double seconds) {
+  const double dt = 0.032;
+  Rng where(seed + 1000);
+  const double a = 2.0 * kPi * where.uniform();
+  const Vec2 source{4.0 * std::cos(a), 4.0 * std::sin(a)};
+  Chemotaxis c(p, Rng(seed));
+  FixedWind wind;
+  RobotParams robot_params;
+  RobotState robot{{0.0, 0.0, 0.0}, 0.0};
+  for (double t = dt; t <= seconds; t += dt) {
+    const double r = std::hypot(robot.pose.x - source.x, robot.pose.y - source.y);
+    if (r <= 0.3) return true;
+    Observation obs;
+    obs.time = t;
+    obs.odometry = robot.pose;
+    obs.odometer = robot.odometer;
+    obs.concentration = 1000.0 * std::exp(-r / 2.0);
+    obs.odor = obs.concentration >= 100.0;  // the paper's threshold: within 4.6 m, always
+    step_robot(robot_params, c.step(obs, wind), dt, robot);
+  }
+  return false;
+}
+
+// Wilson score interval of k successes in n at z standard deviations
+struct Interval {
+  double low, high;
+};
+Interval wilson(int k, int n, double z) {
+  const double p = static_cast<double>(k) / n, z2 = z * z;
+  const double centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
+  const double half = z * std::sqrt(p * (1.0 - p) / n + z2 / (4.0 * n * n)) / (1.0 + z2 / n);
+  return {centre - half, centre + half};
+}
+
+TEST(Chemotaxis, ConcentrationClimbsASmoothGradientThatTheBinaryOdorCannotSee) {
+  // in a smooth field the binary odor is 1 all along the way, so the binary walk never sees a
+  // rise: it is the unbiased random walk, while the concentration biases the walk up the gradient
+  const int n = 200;
+  ChemotaxisParams concentration;
+  ChemotaxisParams binary;
+  binary.signal = ChemotaxisSignal::kBinary;
+  int k_concentration = 0, k_binary = 0;
+  for (int i = 0; i < n; ++i) {
+    k_concentration += reaches_smooth_source(concentration, i, 1200.0);
+    k_binary += reaches_smooth_source(binary, i, 1200.0);
+  }
+  // the two success fractions' 99.99% (3.9 sigma) Wilson intervals do not overlap
+  EXPECT_GT(wilson(k_concentration, n, 3.9).low, wilson(k_binary, n, 3.9).high)
+      << k_concentration << " vs " << k_binary << " of " << n;
 }
 
 }  // namespace

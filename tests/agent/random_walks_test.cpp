@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/world.hpp"
 #include "support/fixed_wind.hpp"
 
 namespace plumetrace {
@@ -135,7 +138,7 @@ TEST(RandomWalks, ABlockedLegEndsAndTheWalkTurnsAwayFromWhatBlockedIt) {
   InstantRobot robot;
   robot.obs.odometry.heading = 0.3;
   Command c = walk.step(robot.obs, wind);
-  EXPECT_EQ(c.heading, 0.3);
+  EXPECT_NEAR(c.heading, 0.3, 1e-15);
   robot.obey(c, 0.01);  // moved a centimetre
   c = walk.step(robot.obs, wind);
   EXPECT_EQ(walk.legs(), 1);
@@ -216,6 +219,55 @@ TEST(RandomWalks, SnapshotIsTheRecentLegsEndingAtThePlannedEnd) {
   const Snapshot l = longer.snapshot();
   ASSERT_EQ(l.path.size(), static_cast<std::size_t>(kWalkHistory) + 1);
   EXPECT_NEAR(l.path[0].x, kWalkHistory * 0.5, 1e-6);
+}
+
+// the behaviour test: runs per bias, their timeout (s), the bias, and a success rate the
+// biased walk beats
+constexpr int kBehaviourRuns = 12;
+constexpr double kBehaviourTimeout = 300.0;
+constexpr double kBehaviourBias = 1.0;
+constexpr double kNullRate = 0.2;
+
+// Successes of `n` runs (seed 1, trials 0 to n - 1) of the paper's laminar scenario with walls
+// that block and the robot starting 4 m downwind of the source, for the walk `algorithm` with
+// upwind bias `w`, timing out after `timeout` (s).
+int laminar_successes(Algorithm algorithm, double w, int n, double timeout) {
+  const std::string name(algorithm_name(algorithm));
+  const Scenario s = build_scenario(
+      {parse_override("controller.algorithm=" + name),
+       parse_override(name + ".upwind_bias=" + std::to_string(w)),
+       parse_override("supervisor.walls=block"), parse_override("robot.start_offset_x=4"),
+       parse_override("supervisor.timeout=" + std::to_string(timeout))});
+  int k = 0;
+  for (int trial = 0; trial < n; ++trial) {
+    const RunResult r = run_once(s, 1, static_cast<std::uint64_t>(trial));
+    // walls block: a walk's run ends only at the source or the timeout
+    EXPECT_TRUE(r.outcome == Outcome::kSuccess || r.outcome == Outcome::kTimeout)
+        << outcome_name(r.outcome);
+    k += r.outcome == Outcome::kSuccess;
+  }
+  return k;
+}
+
+// The upper tail of Binomial(n, p) at k: P(K >= k).
+double binomial_upper_tail(int k, int n, double p) {
+  double total = 0.0;
+  for (int j = k; j <= n; ++j) {
+    total += std::exp(std::lgamma(n + 1.0) - std::lgamma(j + 1.0) - std::lgamma(n - j + 1.0) +
+                      j * std::log(p) + (n - j) * std::log1p(-p));
+  }
+  return total;
+}
+
+TEST(RandomWalks, LevyTaxisFindsTheSourceMoreOftenThanTheUnbiasedLevyWalk) {
+  // 4 m downwind of the source, 300 s (32 m of path at 0.106 m/s), walls that block
+  const int n = kBehaviourRuns;
+  const int unbiased = laminar_successes(Algorithm::kLevy, 0.0, n, kBehaviourTimeout);
+  const int biased = laminar_successes(Algorithm::kLevy, kBehaviourBias, n, kBehaviourTimeout);
+  // had the biased walk succeeded no more often than kNullRate, `biased` or more successes in
+  // n would have a chance below 1e-4; and the unbiased walk does worse
+  EXPECT_LT(binomial_upper_tail(biased, n, kNullRate), 1e-4) << biased << " of " << n;
+  EXPECT_GT(biased, unbiased);
 }
 
 }  // namespace

@@ -37,9 +37,7 @@ Command Chemotaxis::step(const Observation& obs, WindProbe& /*wind*/) {
   return run_.command();
 }
 
-std::string_view Chemotaxis::state() const {
-  return state_ == State::kRun ? "run" : "extended";
-}
+std::string_view Chemotaxis::state() const { return state_ == State::kRun ? "run" : "extended"; }
 
 unsigned Chemotaxis::reads() const {
   return params_.signal == ChemotaxisSignal::kConcentration ? kReadsConcentration : kReadsBinary;

@@ -1,6 +1,7 @@
 // Google Benchmark cases: one plume step, one concentration query, one whole run per algorithm.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "plumetrace/core/errors.hpp"
@@ -116,6 +117,98 @@ void BM_WholeRun(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_WholeRun)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+// a noiseless wind probe: upwind along pi in the odometry frame, seen from `heading`
+class BenchWind final : public WindProbe {
+ public:
+  Vec2 measure_wind_body() override { return rotate({1.0, 0.0}, -heading); }
+  double heading = 0.0;
+};
+
+// one decision of the scenario's controller, the robot obeying at once with a full-speed step
+// (3.392 mm) and a concentration that rises and falls about the threshold
+void bench_decide(benchmark::State& state, const Scenario& s) {
+  std::unique_ptr<Controller> c = make_controller(s.controller, Rng(1));
+  Observation obs;
+  BenchWind wind;
+  const double travel = s.robot.wheel_speed * s.sim.dt;
+  std::int64_t k = 0;
+  for (auto _ : state) {
+    obs.time = static_cast<double>(k) * s.sim.dt;
+    obs.concentration = 100.0 * (1.0 + std::sin(0.01 * static_cast<double>(k)));
+    obs.odor = obs.concentration >= s.odor.threshold;
+    wind.heading = obs.odometry.heading;
+    const Command command = c->step(obs, wind);
+    benchmark::DoNotOptimize(command);
+    obs.odometry.heading = command.heading;
+    obs.odometry.x += travel * std::cos(command.heading);
+    obs.odometry.y += travel * std::sin(command.heading);
+    obs.odometer += travel;
+    ++k;
+  }
+}
+
+// one decision of chemotaxis on the concentration (range 0 = 0) or the binary odor (1)
+void BM_Decide_chemotaxis(benchmark::State& state) {
+  Scenario s;
+  s.controller.algorithm = Algorithm::kChemotaxis;
+  if (state.range(0) != 0) s.controller.get<ChemotaxisParams>().signal = ChemotaxisSignal::kBinary;
+  state.SetLabel(state.range(0) != 0 ? "binary" : "concentration");
+  bench_decide(state, s);
+}
+BENCHMARK(BM_Decide_chemotaxis)->Arg(0)->Arg(1);
+
+// one decision of the correlated random walk without (range 0 = 0) or with an upwind bias (1)
+void BM_Decide_crw(benchmark::State& state) {
+  Scenario s;
+  s.controller.algorithm = Algorithm::kCrw;
+  s.controller.get<CrwParams>().upwind_bias = state.range(0) != 0 ? 0.5 : 0.0;
+  state.SetLabel(state.range(0) != 0 ? "upwind_bias 0.5" : "no bias");
+  bench_decide(state, s);
+}
+BENCHMARK(BM_Decide_crw)->Arg(0)->Arg(1);
+
+// one decision of the Levy walk without (range 0 = 0) or with an upwind bias (1)
+void BM_Decide_levy(benchmark::State& state) {
+  Scenario s;
+  s.controller.algorithm = Algorithm::kLevy;
+  s.controller.get<LevyParams>().upwind_bias = state.range(0) != 0 ? 0.5 : 0.0;
+  state.SetLabel(state.range(0) != 0 ? "upwind_bias 0.5" : "no bias");
+  bench_decide(state, s);
+}
+BENCHMARK(BM_Decide_levy)->Arg(0)->Arg(1);
+
+// one whole run in the laminar wind with walls that block (a walk meets walls often; with
+// walls that end the run, its cost would measure only how soon it meets one): surge-cast (range
+// 0 = 0), chemotaxis on the concentration (1) and binary (2), crw (3), biased crw (4), levy (5),
+// biased levy (6); the same seeds and trials as BM_WholeRun
+void BM_WholeRunWalks(benchmark::State& state) {
+  Scenario s;
+  s.supervisor.walls = WallRule::kBlock;
+  const char* labels[] = {"surge-cast",     "chemotaxis", "chemotaxis binary", "crw",
+                          "crw biased 0.5", "levy",       "levy biased 0.5"};
+  const Algorithm algorithms[] = {
+      Algorithm::kSurgeCast, Algorithm::kChemotaxis, Algorithm::kChemotaxis, Algorithm::kCrw,
+      Algorithm::kCrw,       Algorithm::kLevy,       Algorithm::kLevy};
+  const auto i = static_cast<std::size_t>(state.range(0));
+  s.controller.algorithm = algorithms[i];
+  if (i == 2) s.controller.get<ChemotaxisParams>().signal = ChemotaxisSignal::kBinary;
+  if (i == 4) s.controller.get<CrwParams>().upwind_bias = 0.5;
+  if (i == 6) s.controller.get<LevyParams>().upwind_bias = 0.5;
+  state.SetLabel(labels[i]);
+  std::uint64_t trial = 0;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    steps += run_once(s, 1, trial++ % 8).steps;
+  }
+  state.counters["steps_per_run"] =
+      static_cast<double>(steps) / static_cast<double>(state.iterations());
+  state.counters["per_step"] =
+      benchmark::Counter(static_cast<double>(steps + static_cast<std::int64_t>(state.iterations()) *
+                                                         std::llround(s.sim.warmup / s.sim.dt)),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_WholeRunWalks)->DenseRange(0, 6)->Unit(benchmark::kMillisecond);
 
 // casting that also reads the concentration, so that each step sums every filament near the
 // sensor rather than stopping at the threshold

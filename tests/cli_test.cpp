@@ -170,6 +170,23 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set supervisor.declaration_radius=0", "supervisor.declaration_radius"},
       {"run --set meander.gain=11", "meander.gain: must be a number >= 0 and <= 10"},
       {"run --set wind.meander_gain=11", "wind.meander_gain: must be a number >= 0 and <= 10"},
+      // issue 25: the random walks' and chemotaxis's keys, refused before any run
+      {"run --set controller.algorithm=levy --set levy.mu=1",
+       "levy.mu: must be a number > 1 and <= 3"},
+      {"run --set controller.algorithm=levy --set levy.mu=3.5",
+       "levy.mu: must be a number > 1 and <= 3"},
+      {"run --set controller.algorithm=levy --set levy.l_max=0.1",
+       "levy.l_max: must be greater than levy.l_min"},
+      {"run --set controller.algorithm=crw --set crw.rho=1.5",
+       "crw.rho: must be a number >= 0 and <= 1"},
+      {"run --set controller.algorithm=crw --set crw.upwind_bias=-0.1", "crw.upwind_bias"},
+      {"run --set controller.algorithm=crw --set crw.step=0", "crw.step: must be a number > 0"},
+      {"run --set controller.algorithm=crw --set crw.step_law=gamma",
+       "crw.step_law: must be one of 'fixed', 'exponential'"},
+      {"run --set chemotaxis.signal=smell",
+       "chemotaxis.signal: must be one of 'concentration', 'binary'"},
+      {"run --set chemotaxis.run_length=-1", "chemotaxis.run_length"},
+      {"run --set chemotaxis.bias=-1", "chemotaxis.bias"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);

@@ -28,6 +28,9 @@ ControllerRegistry& controller_registry() {
     add<Casting, CastingParams>(r, "casting");
     add<SurgeSpiral, SurgeSpiralParams>(r, "surge-spiral");
     add<SurgeCast, SurgeCastParams>(r, "surge-cast");
+    add<Chemotaxis, ChemotaxisParams>(r, "chemotaxis");
+    add<Crw, CrwParams>(r, "crw");
+    add<Levy, LevyParams>(r, "levy");
     return r;
   }();
   return registry;
@@ -61,7 +64,9 @@ std::vector<Algorithm> builtin_algorithms() {
   return {Algorithm::kCasting, Algorithm::kSurgeSpiral, Algorithm::kSurgeCast};
 }
 
-std::vector<Algorithm> baseline_algorithms() { return {}; }
+std::vector<Algorithm> baseline_algorithms() {
+  return {Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kLevy};
+}
 
 std::vector<Algorithm> library_algorithms() {
   std::vector<Algorithm> all = builtin_algorithms();

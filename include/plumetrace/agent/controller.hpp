@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string_view>
 #include <vector>
@@ -86,6 +87,70 @@ class LossTracker {
  private:
   double last_odor_odometer_ = 0.0;
 };
+
+/// A straight leg of a walk: a heading and a path length to drive. It is over when the odometer
+/// has advanced its length since it began, or when the robot is blocked: a step on which it was
+/// told to go, neither turned nor moved (a wall under supervisor.walls = "block", or a teammate:
+/// docs/agents.md, "Walls"). why: a robot pressing a wall never advances its odometer, so a walk
+/// that waits for its length would push for ever; ending the leg lets the walk turn away.
+class Leg {
+ public:
+  /// Starts a leg at this observation: drive `length` (m) on `heading` (rad, odometry frame).
+  void start(const Observation& obs, double heading, double length) {
+    heading_ = heading;
+    length_ = length;
+    start_odometer_ = obs.odometer;
+    start_ = {obs.odometry.x, obs.odometry.y};
+    last_ = obs.odometry;
+    last_odometer_ = obs.odometer;
+    steps_ = 0;
+    blocked_ = false;
+  }
+  /// Takes this step's observation (the leg's command was obeyed since the last); true when the
+  /// leg is over, driven to its length or blocked.
+  bool over(const Observation& obs) {
+    if (steps_ > 0 && obs.odometer == last_odometer_ && obs.odometry.heading == last_.heading) {
+      blocked_ = true;
+    }
+    last_ = obs.odometry;
+    last_odometer_ = obs.odometer;
+    return blocked_ || obs.odometer - start_odometer_ >= length_;
+  }
+  /// The command that drives the leg this step.
+  Command command() {
+    ++steps_;
+    return Command::go(heading_);
+  }
+  /// Whether the leg ended because the robot was blocked.
+  bool blocked() const { return blocked_; }
+  /// The leg's heading (rad, odometry frame).
+  double heading() const { return heading_; }
+  /// The leg's length (m).
+  double length() const { return length_; }
+  /// Path length driven on this leg so far (m).
+  double driven(const Observation& obs) const { return obs.odometer - start_odometer_; }
+  /// Where the leg began (m, odometry frame).
+  Vec2 start_point() const { return start_; }
+  /// Where the leg ends if it is driven to its length (m, odometry frame).
+  Vec2 end_point() const {
+    return {start_.x + length_ * std::cos(heading_), start_.y + length_ * std::sin(heading_)};
+  }
+
+ private:
+  double heading_ = 0.0;
+  double length_ = 0.0;
+  double start_odometer_ = 0.0;
+  Vec2 start_;
+  Pose last_;
+  double last_odometer_ = 0.0;
+  int steps_ = 0;
+  bool blocked_ = false;
+};
+
+/// Draws a turning angle (rad, in [-pi, pi]) from the wrapped Cauchy law WC(0, rho), 0 <= rho
+/// <= 1, whose mean cosine is rho: uniform at rho = 0, no turn at rho = 1 (Codling, Plank &
+/// Benhamou 2008, J. R. Soc. Interface 5:813; docs/algorithms.md, "crw").
+double wrapped_cauchy(double rho, Rng& rng);
 
 /// Guesses the plume side (+1 left of upwind, -1 right) after a loss: the robot drifted to the side
 /// its surge heading erred toward, so the plume is on the other side; a tie is broken at random.

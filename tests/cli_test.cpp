@@ -170,6 +170,14 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
       {"run --set supervisor.declaration_radius=0", "supervisor.declaration_radius"},
       {"run --set meander.gain=11", "meander.gain: must be a number >= 0 and <= 10"},
       {"run --set wind.meander_gain=11", "wind.meander_gain: must be a number >= 0 and <= 10"},
+      // issue 25, item 8: the particle filter's limits
+      {"run --algorithm particle-filter --set particle_filter.particles=20001",
+       "particle_filter.particles"},
+      {"run --algorithm particle-filter --set particle_filter.diffusivity=0",
+       "particle_filter.diffusivity"},
+      {"run --algorithm particle-filter --set particle_filter.particles=20000 --set "
+       "particle_filter.wind_history=600",
+       "particle_filter.wind_history"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);

@@ -34,7 +34,7 @@ struct ParticleFilterParams {
   double sensor_area = 0.01;
   /// Floor of the puff spread rate: sigma^2 = max(sd_wind^2, 2 K) tau per axis (m^2/s). why:
   /// in the laminar tunnel sd_wind ~ 0 and MAPIR's spread vanishes (docs/algorithms.md).
-  double diffusivity = 0.08;
+  double diffusivity = 0.04;
   /// Resample when N_eff < this fraction of the particles. why: 0.25, MAPIR's test.
   double resample_below = 0.25;
   /// Standard deviation of the offset given to each resampled particle (m). why: 0.05, the

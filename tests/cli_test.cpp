@@ -187,6 +187,14 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
        "chemotaxis.signal: must be one of 'concentration', 'binary'"},
       {"run --set chemotaxis.run_length=-1", "chemotaxis.run_length"},
       {"run --set chemotaxis.bias=-1", "chemotaxis.bias"},
+      // issue 25, item 8: the particle filter's limits
+      {"run --algorithm particle-filter --set particle_filter.particles=20001",
+       "particle_filter.particles"},
+      {"run --algorithm particle-filter --set particle_filter.diffusivity=0",
+       "particle_filter.diffusivity"},
+      {"run --algorithm particle-filter --set particle_filter.particles=20000 --set "
+       "particle_filter.wind_history=600",
+       "particle_filter.wind_history"},
   };
   for (const auto& c : cases) {
     const Output o = cli(c.args);

@@ -28,6 +28,7 @@ ControllerRegistry& controller_registry() {
     add<Casting, CastingParams>(r, "casting");
     add<SurgeSpiral, SurgeSpiralParams>(r, "surge-spiral");
     add<SurgeCast, SurgeCastParams>(r, "surge-cast");
+    add<ParticleFilter, ParticleFilterParams>(r, "particle-filter");
     add<Chemotaxis, ChemotaxisParams>(r, "chemotaxis");
     add<Crw, CrwParams>(r, "crw");
     add<Levy, LevyParams>(r, "levy");
@@ -65,7 +66,7 @@ std::vector<Algorithm> builtin_algorithms() {
 }
 
 std::vector<Algorithm> baseline_algorithms() {
-  return {Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kLevy};
+  return {Algorithm::kParticleFilter, Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kLevy};
 }
 
 std::vector<Algorithm> library_algorithms() {

@@ -2,7 +2,8 @@
 """Checks the include graph against the layer table of docs/architecture.md.
 
 Fails (exit 1, one line per problem) when a file includes a module of a layer its own layer may
-not use, when a controller includes more than the controller interface and the measurements,
+not use, when a controller includes more than the controller interface, the measurements and other
+controllers (which obey the same rule),
 when an include names no file, or when modules include each other (any cycle). A module is a
 header and its source (include/plumetrace/env/wind.hpp and src/env/wind.cpp are env/wind).
 
@@ -105,9 +106,12 @@ def check(root: Path) -> list:
             if to not in layers[layer]:
                 problems.append(f'{where}: layer {layer} includes "{name}" of layer {to} '
                                 f"(it may include: {', '.join(sorted(layers[layer]))})")
+            # why: another controller sees no more than the rule lets it (the particle filter
+            # rides on surge-spiral)
             if module.startswith("agent/controllers/") and to != "core" and \
-                    target not in CONTROLLER_MAY_SEE and target != module:
-                problems.append(f'{where}: a controller includes "{name}"; controllers see only '
+                    target not in CONTROLLER_MAY_SEE and \
+                    not target.startswith("agent/controllers/"):
+                problems.append(f'{where}: a controller includes "{name}"; controllers see only other controllers, '
                                 f"{', '.join(sorted(CONTROLLER_MAY_SEE))} and the core")
     problems += [f"modules include each other: {' -> '.join(c)}" for c in cycles(edges)]
     return problems

@@ -10,6 +10,7 @@
 #include "plumetrace/agent/controllers/casting.hpp"
 #include "plumetrace/agent/controllers/chemotaxis.hpp"
 #include "plumetrace/agent/controllers/random_walks.hpp"
+#include "plumetrace/agent/controllers/particle_filter.hpp"
 #include "plumetrace/agent/controllers/surge_cast.hpp"
 #include "plumetrace/agent/controllers/surge_spiral.hpp"
 #include "plumetrace/core/registry.hpp"
@@ -70,7 +71,15 @@ struct RegisterController {
 
 /// An algorithm: its place in controller_registry(). The built-ins are named here, in the order
 /// they are registered; a controller registered from outside the library comes after them.
-enum class Algorithm : int { kCasting, kSurgeSpiral, kSurgeCast, kChemotaxis, kCrw, kLevy };
+enum class Algorithm : int {
+  kCasting,
+  kSurgeSpiral,
+  kSurgeCast,
+  kParticleFilter,
+  kChemotaxis,
+  kCrw,
+  kLevy,
+};
 
 /// Which algorithm runs, and the parameters of each.
 struct ControllerParams {

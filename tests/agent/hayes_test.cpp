@@ -288,15 +288,11 @@ TeamCount team_outside(double range, int runs, double timeout) {
   };
   // robot k starts ceil(k/2) spacings to the left (odd k) or right of robot 0, facing the same
   // way: its release point is (0, +-0.4) of robot 0's odometry frame, the team's frame
-  const Scenario s = build_scenario({set("controller.algorithm", std::string("hayes")),
-                                     set("robot.start_offset_x", 8.0),
-                                     set("robot.start_offset_y", 1.0),
-                                     set("team.count", std::int64_t{3}),
-                                     set("team.spacing", 0.4),
-                                     set("team.range", range),
-                                     set("supervisor.timeout", timeout),
-                                     set("member.1.hayes.origin_y", 0.4),
-                                     set("member.2.hayes.origin_y", -0.4)});
+  const Scenario s = build_scenario(
+      {set("controller.algorithm", std::string("hayes")), set("robot.start_offset_x", 8.0),
+       set("robot.start_offset_y", 1.0), set("team.count", std::int64_t{3}),
+       set("team.spacing", 0.4), set("team.range", range), set("supervisor.timeout", timeout),
+       set("member.1.hayes.origin_y", 0.4), set("member.2.hayes.origin_y", -0.4)});
   TeamCount count;
   for (int t = 0; t < runs; ++t) {
     for (const RunResult& r : run_team(s, 20080101, static_cast<std::uint64_t>(t))) {
@@ -309,17 +305,17 @@ TeamCount team_outside(double range, int runs, double timeout) {
 }
 
 TEST(Hayes, ATeamSharingHitsFindsThePlumeWithMoreRobotsThanATeamOutOfRange) {
-  const int runs = 10;
-  const TeamCount shared = team_outside(INFINITY, runs, 120.0);
-  const TeamCount silent = team_outside(0.0, runs, 120.0);
+  const int runs = 30;
+  const TeamCount shared = team_outside(INFINITY, runs, 100.0);
+  const TeamCount silent = team_outside(0.0, runs, 100.0);
   ASSERT_EQ(shared.robots, 3 * runs);
   // why: two independent binomial proportions; the difference exceeds 4 of its standard errors
   // (pooled), so a team that shared nothing would pass by chance with odds under 1 in 10^4
   const double n = shared.robots;
   const double p1 = shared.found / n, p0 = silent.found / n, pool = (p1 + p0) / 2.0;
   const double se = std::sqrt(pool * (1.0 - pool) * 2.0 / n);
-  EXPECT_GT(p1 - p0, 4.0 * se) << "shared " << shared.found << ", silent " << silent.found
-                               << " of " << n;
+  EXPECT_GT(p1 - p0, 4.0 * se) << "shared " << shared.found << ", silent " << silent.found << " of "
+                               << n;
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <vector>
 
 #include "plumetrace/agent/controller.hpp"
-#include "plumetrace/agent/controllers/surge_spiral.hpp"
 
 namespace plumetrace {
 
@@ -23,8 +22,8 @@ struct HayesParams {
   /// This robot's release pose in the team's shared frame (m, m, rad): hit positions travel in
   /// that frame. Robot 0's defaults make its odometry frame the team's.
   double origin_x = 0.0;
-  double origin_y = 0.0;       ///< see origin_x (m)
-  double origin_heading = 0.0; ///< see origin_x (rad)
+  double origin_y = 0.0;        ///< see origin_x (m)
+  double origin_heading = 0.0;  ///< see origin_x (rad)
   /// Hits (own and teammates') within declare_radius of the robot and declare_window of now
   /// that make it declare the source at their mean; 0: never declare.
   int declare_hits = 0;
@@ -37,13 +36,11 @@ struct HayesParams {
   template <class V>
   void fields(V& v) {
     const double deg = kPi / 180.0;
-    v("d_surge", d_surge, "path length of an upwind surge after the last odor hit (m)",
-      kPositive);
+    v("d_surge", d_surge, "path length of an upwind surge after the last odor hit (m)", kPositive);
     v("d_gap", d_gap, "gap between spiral turns when the plume is lost after a surge (m)",
       kPositive);
     v("d_gap_find", d_gap_find,
-      "gap between spiral turns when looking for the plume from the release point (m)",
-      kPositive);
+      "gap between spiral turns when looking for the plume from the release point (m)", kPositive);
     v("start_radius", start_radius, "radius on the spiral r = b theta where spiralling starts (m)",
       NumberSpec{.min = 0.0, .max = 5.0});
     v("d_arrive", d_arrive,

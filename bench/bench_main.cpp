@@ -233,6 +233,60 @@ void BM_WholeRunWalks(benchmark::State& state) {
 }
 BENCHMARK(BM_WholeRunWalks)->DenseRange(0, 6)->Unit(benchmark::kMillisecond);
 
+// one decision of hayes on its spiral, fed a new odometer each step: range 0 alone; range 1 with
+// two teammates' hits a step pooled toward a declaration that never comes (declare_hits at its
+// maximum), so each decision also counts the hits remembered
+void BM_Decide_hayes(benchmark::State& state) {
+  HayesParams params;
+  const bool team = state.range(0) != 0;
+  if (team) params.declare_hits = 100000;
+  state.SetLabel(team ? "two teammates' hits a step, counting" : "alone");
+  Hayes hayes(params, Rng(1));
+  class Still final : public WindProbe {
+    Vec2 measure_wind_body() override { return {1.0, 0.0}; }
+  } wind;
+  std::vector<Message> inbox(team ? 2 : 0);
+  Observation obs;
+  std::int64_t k = 0;
+  for (auto _ : state) {
+    ++k;
+    obs.time = static_cast<double>(k) * 0.032;
+    obs.odometer = static_cast<double>(k) * 0.0034;
+    for (std::size_t i = 0; i < inbox.size(); ++i) {
+      // hits behind the robot (+x of its frame), so that it keeps spiralling
+      inbox[i] = {
+          static_cast<int>(i) + 1, obs.time, {5.0 + obs.time, 0.1 * i, Hayes::kHitTag, 0.0}};
+    }
+    obs.messages = inbox;
+    benchmark::DoNotOptimize(hayes.step(obs, wind));
+  }
+}
+BENCHMARK(BM_Decide_hayes)->Arg(0)->Arg(1);
+
+// a whole run of a team of three hayes robots released outside the laminar plume (robot 0 8 m
+// downwind and 1 m to the side, the others 0.4 m either side), sharing hits (range 0 = 1) or out
+// of range (0); compare with BM_WholeRun of surge-cast, one robot from the paper's start
+void BM_TeamRun_hayes(benchmark::State& state) {
+  const auto set = [](const char* key, ConfigValue v) {
+    return Setting{key, std::move(v), false, "bench", Layer::kCommandLine};
+  };
+  const bool shared = state.range(0) != 0;
+  const Scenario s = build_scenario(
+      {set("controller.algorithm", std::string("hayes")), set("robot.start_offset_x", 8.0),
+       set("robot.start_offset_y", 1.0), set("team.count", std::int64_t{3}),
+       set("team.spacing", 0.4), set("team.range", shared ? INFINITY : 0.0),
+       set("member.1.hayes.origin_y", 0.4), set("member.2.hayes.origin_y", -0.4)});
+  state.SetLabel(shared ? "3 robots sharing hits" : "3 robots out of range");
+  std::uint64_t trial = 0;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    for (const RunResult& r : run_team(s, 1, trial++ % 8)) steps += r.steps;
+  }
+  state.counters["robot_steps_per_run"] =
+      static_cast<double>(steps) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_TeamRun_hayes)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
 // casting that also reads the concentration, so that each step sums every filament near the
 // sensor rather than stopping at the threshold
 class ReadingCasting final : public Controller {

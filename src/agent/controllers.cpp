@@ -32,6 +32,7 @@ ControllerRegistry& controller_registry() {
     add<Chemotaxis, ChemotaxisParams>(r, "chemotaxis");
     add<Crw, CrwParams>(r, "crw");
     add<Levy, LevyParams>(r, "levy");
+    add<Hayes, HayesParams>(r, "hayes");
     return r;
   }();
   return registry;
@@ -66,7 +67,8 @@ std::vector<Algorithm> builtin_algorithms() {
 }
 
 std::vector<Algorithm> baseline_algorithms() {
-  return {Algorithm::kParticleFilter, Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kLevy};
+  return {Algorithm::kParticleFilter, Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kLevy,
+          Algorithm::kHayes};
 }
 
 std::vector<Algorithm> library_algorithms() {

@@ -152,6 +152,37 @@ class Leg {
 /// Benhamou 2008, J. R. Soc. Interface 5:813; docs/algorithms.md, "crw").
 double wrapped_cauchy(double rho, Rng& rng);
 
+/// Path length (m) of the Archimedean spiral r = b theta from its centre to angle theta (rad).
+double spiral_arc_length(double b, double theta);
+
+/// Angle theta (rad) at which the spiral r = b theta has path length s (m); Newton from `guess`.
+double spiral_angle_at(double b, double s, double guess);
+
+/// Curvature (1/m) of the spiral r = b theta at angle theta (rad).
+double spiral_curvature(double b, double theta);
+
+/// Follows the Archimedean spiral r = b theta, b = d_gap / (2 pi), by its curvature at the path
+/// length driven (docs/model.md section 7.3): surge-spiral's and hayes' spirals.
+class SpiralPath {
+ public:
+  /// A spiral of gap `d_gap` (m) entered at radius `start_radius` (m) on it, curling `curl`
+  /// (+1 counter-clockwise, -1 clockwise); its path length counts from anchor().
+  void start(double d_gap, double start_radius, int curl);
+  /// Fixes where the spiral's path starts: the odometer (m) at its first step.
+  void anchor(double odometer) { s0_ = odometer; }
+  /// The curvature (1/m, signed by the curl) to drive at odometer reading `odometer` (m).
+  double curvature(double odometer);
+  /// Direction it curls: +1 counter-clockwise (left), -1 clockwise.
+  int curl() const { return curl_; }
+
+ private:
+  double b_ = 1.0;           // r = b theta (m/rad)
+  double theta_ = 0.0;       // angle reached (rad)
+  double arc_offset_ = 0.0;  // path length from the centre to the start radius (m)
+  double s0_ = 0.0;          // odometer at the anchor (m)
+  int curl_ = 1;
+};
+
 /// Guesses the plume side (+1 left of upwind, -1 right) after a loss: the robot drifted to the side
 /// its surge heading erred toward, so the plume is on the other side; a tie is broken at random.
 int guess_plume_side(double surge_heading, double upwind_now, Rng& rng);

@@ -11,6 +11,7 @@
 #include "plumetrace/agent/controllers/chemotaxis.hpp"
 #include "plumetrace/agent/controllers/random_walks.hpp"
 #include "plumetrace/agent/controllers/particle_filter.hpp"
+#include "plumetrace/agent/controllers/hayes.hpp"
 #include "plumetrace/agent/controllers/surge_cast.hpp"
 #include "plumetrace/agent/controllers/surge_spiral.hpp"
 #include "plumetrace/core/registry.hpp"
@@ -79,6 +80,7 @@ enum class Algorithm : int {
   kChemotaxis,
   kCrw,
   kLevy,
+  kHayes,
 };
 
 /// Which algorithm runs, and the parameters of each.

@@ -4,34 +4,6 @@
 
 namespace plumetrace {
 
-namespace {
-
-// the spiral's b (m/rad): r = b theta puts successive turns d_gap apart
-double spiral_b(const SurgeSpiralParams& params) { return params.d_gap / (2.0 * kPi); }
-
-}  // namespace
-
-double spiral_arc_length(double b, double theta) {
-  return 0.5 * b * (theta * std::sqrt(1.0 + theta * theta) + std::asinh(theta));
-}
-
-double spiral_angle_at(double b, double s, double guess) {
-  double theta = guess;
-  for (int i = 0; i < 50; ++i) {
-    const double f = spiral_arc_length(b, theta) - s;
-    const double step = f / (b * std::sqrt(1.0 + theta * theta));
-    theta -= step;
-    if (theta < 0.0) theta = 0.0;
-    if (std::fabs(step) < 1e-13) break;
-  }
-  return theta;
-}
-
-double spiral_curvature(double b, double theta) {
-  const double t2 = theta * theta;
-  return (t2 + 2.0) / (b * std::pow(t2 + 1.0, 1.5));
-}
-
 Command SurgeSpiral::step(const Observation& obs, WindProbe& wind) {
   tracker_.observe(obs);
   if (!started_) {
@@ -44,13 +16,10 @@ Command SurgeSpiral::step(const Observation& obs, WindProbe& wind) {
         // lost: measure wind, guess the plume side, spiral toward it starting upwind
         ++losses_;
         const double upwind = upwind_heading(wind.measure_wind_body(), obs.odometry.heading);
-        curl_ = guess_plume_side(heading_, upwind, rng_);
+        spiral_.start(params_.d_gap, params_.start_radius,
+                      guess_plume_side(heading_, upwind, rng_));
         heading_ = upwind;
         aligned_ = false;
-        // why: the Khepera III toolbox's spiral starts with a finite curvature, i.e. at a radius
-        // r0 on the spiral, not at its centre (docs/model.md)
-        theta_ = params_.start_radius / spiral_b(params_);
-        arc_offset_ = spiral_arc_length(spiral_b(params_), theta_);
         state_ = State::kSpiral;
       }
       break;
@@ -68,13 +37,9 @@ Command SurgeSpiral::step(const Observation& obs, WindProbe& wind) {
       return Command::turn_to(heading_);
     }
     aligned_ = true;
-    spiral_start_ = obs.odometer;
+    spiral_.anchor(obs.odometer);
   }
-  // why: follow r = b theta by its curvature at the path length covered so far, counted from
-  // the spiral's centre (b = d_gap / 2 pi)
-  const double b = spiral_b(params_);
-  theta_ = spiral_angle_at(b, arc_offset_ + (obs.odometer - spiral_start_), theta_);
-  return Command::curve(curl_ * spiral_curvature(b, theta_));
+  return Command::curve(spiral_.curvature(obs.odometer));
 }
 
 std::string_view SurgeSpiral::state() const { return state_ == State::kSurge ? "surge" : "spiral"; }

@@ -25,15 +25,6 @@ struct SurgeSpiralParams {
   }
 };
 
-/// Path length (m) of the Archimedean spiral r = b theta from its centre to angle theta (rad).
-double spiral_arc_length(double b, double theta);
-
-/// Angle theta (rad) at which the spiral r = b theta has path length s (m); Newton from `guess`.
-double spiral_angle_at(double b, double s, double guess);
-
-/// Curvature (1/m) of the spiral r = b theta at angle theta (rad).
-double spiral_curvature(double b, double theta);
-
 /// Surge-spiral: straight upwind in the plume; once lost, an Archimedean spiral that starts
 /// upwind and curls toward the guessed plume side.
 class SurgeSpiral final : public Controller {
@@ -47,7 +38,7 @@ class SurgeSpiral final : public Controller {
   std::string_view state() const override;
   int losses() const override { return losses_; }
   /// Direction the current spiral curls: +1 counter-clockwise (left), -1 clockwise.
-  int curl() const { return curl_; }
+  int curl() const { return spiral_.curl(); }
 
  private:
   SurgeSpiralParams params_;
@@ -55,11 +46,8 @@ class SurgeSpiral final : public Controller {
   State state_ = State::kSurge;
   bool started_ = false;
   double heading_ = 0.0;  // surge heading, or the spiral's start heading
-  int curl_ = 1;
-  bool aligned_ = false;       // spiral: turned to its start heading
-  double spiral_start_ = 0.0;  // odometer where the spiral starts (m)
-  double arc_offset_ = 0.0;    // spiral path length from the centre to theta0 (m)
-  double theta_ = 0.0;
+  bool aligned_ = false;  // spiral: turned to its start heading
+  SpiralPath spiral_;
   int losses_ = 0;
   LossTracker tracker_;
 };

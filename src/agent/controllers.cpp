@@ -28,6 +28,7 @@ ControllerRegistry& controller_registry() {
     add<Casting, CastingParams>(r, "casting");
     add<SurgeSpiral, SurgeSpiralParams>(r, "surge-spiral");
     add<SurgeCast, SurgeCastParams>(r, "surge-cast");
+    add<Infotaxis, InfotaxisParams>(r, "infotaxis");
     return r;
   }();
   return registry;
@@ -61,7 +62,7 @@ std::vector<Algorithm> builtin_algorithms() {
   return {Algorithm::kCasting, Algorithm::kSurgeSpiral, Algorithm::kSurgeCast};
 }
 
-std::vector<Algorithm> baseline_algorithms() { return {}; }
+std::vector<Algorithm> baseline_algorithms() { return {Algorithm::kInfotaxis}; }
 
 std::vector<Algorithm> library_algorithms() {
   std::vector<Algorithm> all = builtin_algorithms();

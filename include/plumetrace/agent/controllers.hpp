@@ -8,6 +8,7 @@
 
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/agent/controllers/casting.hpp"
+#include "plumetrace/agent/controllers/infotaxis.hpp"
 #include "plumetrace/agent/controllers/surge_cast.hpp"
 #include "plumetrace/agent/controllers/surge_spiral.hpp"
 #include "plumetrace/core/registry.hpp"
@@ -68,7 +69,7 @@ struct RegisterController {
 
 /// An algorithm: its place in controller_registry(). The built-ins are named here, in the order
 /// they are registered; a controller registered from outside the library comes after them.
-enum class Algorithm : int { kCasting, kSurgeSpiral, kSurgeCast };
+enum class Algorithm : int { kCasting, kSurgeSpiral, kSurgeCast, kInfotaxis };
 
 /// Which algorithm runs, and the parameters of each.
 struct ControllerParams {

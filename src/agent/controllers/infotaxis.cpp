@@ -15,8 +15,8 @@ namespace {
 double bessel_i0_small(double x) {
   const double t = (x / 3.75) * (x / 3.75);
   return 1.0 + t * (3.5156229 +
-                    t * (3.0899424 + t * (1.2067492 + t * (0.2659732 + t * (0.0360768 +
-                                                                              t * 0.0045813)))));
+                    t * (3.0899424 +
+                         t * (1.2067492 + t * (0.2659732 + t * (0.0360768 + t * 0.0045813)))));
 }
 
 // sqrt(x) e^x K0(x) for x >= 2: Abramowitz & Stegun 9.8.6 (error below 1.9e-7)
@@ -274,8 +274,7 @@ Command Infotaxis::step(const Observation& obs, WindProbe& wind) {
     // teammate); or a move lasting far beyond its predicted time
     const bool stalled = commanded_go_ && travelled <= 0.0 &&
                          std::fabs(wrap_angle(last_heading_ - commanded_)) < 1e-9;
-    const bool overdue =
-        obs.time - move_start_ > 4.0 * params_.cell / params_.speed + 5.0;
+    const bool overdue = obs.time - move_start_ > 4.0 * params_.cell / params_.speed + 5.0;
     if (arrived) {
       ci_ = ti_;
       cj_ = tj_;

@@ -22,23 +22,23 @@ inline constexpr int kMaxInfotaxisCells = 40'000;
 /// "infotaxis", says where each default comes from).
 struct InfotaxisParams {
   /// Effective diffusivity D of the odor particles (m^2/s).
-  double diffusivity = 0.003;
+  double diffusivity = 0.01;
   /// Particle lifetime tau (s).
-  double lifetime = 16.0;
+  double lifetime = 30.0;
   /// Mean wind speed V the model assumes (m/s); its direction is measured.
   double wind_speed = 1.0;
   /// Emission rate R of the source (particles/s).
-  double emission_rate = 100.0;
+  double emission_rate = 300.0;
   /// Linear size a of the detector (m); must be below the correlation length lambda.
   double detector_size = 0.001;
   /// Side of a grid cell (m): the length of one move.
   double cell = 0.25;
   /// Cells of the grid upwind of the start cell.
-  int cells_upwind = 64;
+  int cells_upwind = 61;
   /// Cells of the grid downwind of the start cell.
-  int cells_downwind = 4;
+  int cells_downwind = 1;
   /// Cells of the grid on each side of the start cell, across the wind.
-  int cells_crosswind = 9;
+  int cells_crosswind = 7;
   /// Wind samples averaged at release to orient the grid and the model's wind.
   int wind_samples = 10;
   /// Speed the model assumes to predict how long a move lasts (m/s).
@@ -48,7 +48,7 @@ struct InfotaxisParams {
   /// Concentration at or above which a step is a hit when hits = concentration.
   double hit_threshold = 100.0;
   /// The source is declared once the belief within declare_radius of its mode reaches this.
-  double declare_probability = 0.5;
+  double declare_probability = 1.0;
   /// Radius around the belief's mode whose mass decides the declaration (m).
   double declare_radius = 0.25;
 

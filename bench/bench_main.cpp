@@ -102,7 +102,7 @@ void BM_WholeRun(benchmark::State& state) {
   Scenario s = bench_scenario(state.range(1));
   s.controller.algorithm = library_algorithms()[static_cast<std::size_t>(state.range(0))];
   state.SetLabel(std::string(algorithm_name(s.controller.algorithm)) +
-                 (state.range(1) != 0 ? " meander" : ""));
+                 (meander != 0 ? " meander" : ""));
   std::uint64_t trial = 0;
   std::int64_t steps = 0;
   for (auto _ : state) {
@@ -286,6 +286,27 @@ void BM_TeamRun_hayes(benchmark::State& state) {
       static_cast<double>(steps) / static_cast<double>(state.iterations());
 }
 BENCHMARK(BM_TeamRun_hayes)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
+// one decision of infotaxis at its default grid (69 x 19 cells): the Bayes update at the cell
+// reached (no hit during a 2.4 s move) and the choice among the four neighbours, on the belief
+// left by a hit at the start cell and 20 cells walked upwind without one
+void BM_Decide_infotaxis(benchmark::State& state) {
+  const InfotaxisParams p;
+  const int nx = p.cells_upwind + p.cells_downwind + 1, ny = 2 * p.cells_crosswind + 1;
+  const int i0 = p.cells_downwind, j0 = p.cells_crosswind;
+  const double move = p.cell / p.speed;
+  InfotaxisBelief base(p, nx, ny, {-1.0, 0.0});
+  base.update(i0, j0, true, 0.032);
+  for (int k = 1; k <= 20; ++k) base.update(i0 + k, j0, false, move);
+  const std::vector<char> blocked(static_cast<std::size_t>(nx) * ny, 0);
+  InfotaxisBelief b = base;
+  for (auto _ : state) {
+    b.set_probability(base.probability());
+    b.update(i0 + 21, j0, false, move);
+    benchmark::DoNotOptimize(b.choose_move(i0 + 21, j0, move, blocked));
+  }
+}
+BENCHMARK(BM_Decide_infotaxis)->Unit(benchmark::kMicrosecond);
 
 // casting that also reads the concentration, so that each step sums every filament near the
 // sensor rather than stopping at the threshold

@@ -28,6 +28,7 @@ ControllerRegistry& controller_registry() {
     add<Casting, CastingParams>(r, "casting");
     add<SurgeSpiral, SurgeSpiralParams>(r, "surge-spiral");
     add<SurgeCast, SurgeCastParams>(r, "surge-cast");
+    add<Infotaxis, InfotaxisParams>(r, "infotaxis");
     add<ParticleFilter, ParticleFilterParams>(r, "particle-filter");
     add<Chemotaxis, ChemotaxisParams>(r, "chemotaxis");
     add<Crw, CrwParams>(r, "crw");
@@ -67,8 +68,8 @@ std::vector<Algorithm> builtin_algorithms() {
 }
 
 std::vector<Algorithm> baseline_algorithms() {
-  return {Algorithm::kParticleFilter, Algorithm::kChemotaxis, Algorithm::kCrw, Algorithm::kLevy,
-          Algorithm::kHayes};
+  return {Algorithm::kInfotaxis, Algorithm::kParticleFilter, Algorithm::kChemotaxis,
+          Algorithm::kCrw,       Algorithm::kLevy,           Algorithm::kHayes};
 }
 
 std::vector<Algorithm> library_algorithms() {

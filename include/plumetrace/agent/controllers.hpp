@@ -9,9 +9,10 @@
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/agent/controllers/casting.hpp"
 #include "plumetrace/agent/controllers/chemotaxis.hpp"
-#include "plumetrace/agent/controllers/random_walks.hpp"
-#include "plumetrace/agent/controllers/particle_filter.hpp"
 #include "plumetrace/agent/controllers/hayes.hpp"
+#include "plumetrace/agent/controllers/infotaxis.hpp"
+#include "plumetrace/agent/controllers/particle_filter.hpp"
+#include "plumetrace/agent/controllers/random_walks.hpp"
 #include "plumetrace/agent/controllers/surge_cast.hpp"
 #include "plumetrace/agent/controllers/surge_spiral.hpp"
 #include "plumetrace/core/registry.hpp"
@@ -76,6 +77,7 @@ enum class Algorithm : int {
   kCasting,
   kSurgeSpiral,
   kSurgeCast,
+  kInfotaxis,
   kParticleFilter,
   kChemotaxis,
   kCrw,

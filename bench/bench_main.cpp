@@ -102,7 +102,7 @@ void BM_WholeRun(benchmark::State& state) {
   Scenario s = bench_scenario(state.range(1));
   s.controller.algorithm = library_algorithms()[static_cast<std::size_t>(state.range(0))];
   state.SetLabel(std::string(algorithm_name(s.controller.algorithm)) +
-                 (meander != 0 ? " meander" : ""));
+                 (state.range(1) != 0 ? " meander" : ""));
   std::uint64_t trial = 0;
   std::int64_t steps = 0;
   for (auto _ : state) {

@@ -469,6 +469,31 @@ TEST(Study, TheMultirobotStudyRunsAndDrawsItsReport) {
   }
 }
 
+#ifndef PLUMETRACE_WITH_ZIGZAG
+// (once: the zigzag build's run would repeat it without a controller of its own in the study)
+TEST(Study, TheBaselinesStudyRunsEveryAlgorithmAndDrawsItsReport) {
+  const std::string out = testing::temp_path("baselines", "");
+  const Output o = cli("study " + std::string(PLUMETRACE_SOURCE_DIR) +
+                       "/studies/baselines --runs 1 --out " + out + " --quiet");
+  ASSERT_EQ(o.code, 0) << o.err;
+  // 3 winds x (9 algorithms + 2 biased walks + hayes' team with and without messages) x 2 starts
+  EXPECT_NE(o.out.find("baselines: 78 runs"), std::string::npos) << o.out;
+  const std::string md = testing::read_file(out + "/report.md");
+  EXPECT_EQ(md.rfind("# Baselines of the field: ", 0), 0u) << md.substr(0, 200);
+  // every algorithm built into the library has a row in each of the 6 tables (wind x start)
+  for (const char* a :
+       {"casting", "surge-spiral", "surge-cast", "infotaxis", "particle-filter", "chemotaxis",
+        "crw", "levy", "hayes", "crw + upwind bias", "levy + upwind bias",
+        "hayes, team of 3, messages", "hayes, team of 3, no messages"}) {
+    const std::string row = "| " + std::string(a) + " | ";
+    std::size_t rows = 0;
+    for (auto at = md.find(row); at != std::string::npos; at = md.find(row, at + 1)) ++rows;
+    EXPECT_EQ(rows, 6u) << row;
+  }
+  EXPECT_TRUE(std::filesystem::exists(out + "/figures/baselines_success.png"));
+}
+#endif
+
 #ifdef PLUMETRACE_WITH_ZIGZAG
 // this build runs the tests of this file against examples/zigzag, the command with one more
 // controller: its keys are config keys like the built-ins'

@@ -273,7 +273,7 @@ def build_report(out_dir) -> list:
             best, tied = leaders(cells, wind, start)
             nulls = [rate(c) for v, c in here.items() if v.startswith(NULLS)]
             words = (f"Best success {pct(best)}; tied with the best (Newcombe's 95% interval "
-                     f"of the difference includes 0): {', '.join(tied) or 'none'}.")
+                     f"of the difference includes 0): {'; '.join(tied) or 'none'}.")
             if nulls:
                 words += f" The random walks reach at most {pct(max(nulls))}."
             sections.append(Section(

@@ -187,6 +187,15 @@ TEST(Cli, ConfigErrorsNameTheKeyExitTwoAndPrintNothing) {
        "chemotaxis.signal: must be one of 'concentration', 'binary'"},
       {"run --set chemotaxis.run_length=-1", "chemotaxis.run_length"},
       {"run --set chemotaxis.bias=-1", "chemotaxis.bias"},
+      // issue 25, item 8: infotaxis' model and grid
+      {"run --algorithm infotaxis --set infotaxis.diffusivity=0", "infotaxis.diffusivity"},
+      {"run --algorithm infotaxis --set infotaxis.lifetime=-1", "infotaxis.lifetime"},
+      {"run --algorithm infotaxis --set infotaxis.detector_size=5",
+       "infotaxis.detector_size: must be below the correlation length"},
+      {"run --algorithm infotaxis --set infotaxis.cells_upwind=400 --set "
+       "infotaxis.cells_crosswind=100",
+       "infotaxis.cells_upwind, infotaxis.cells_downwind, infotaxis.cells_crosswind: the grid"},
+      {"run --algorithm infotaxis --set infotaxis.cells_upwind=1001", "infotaxis.cells_upwind"},
       // issue 25, item 8: the particle filter's limits
       {"run --algorithm particle-filter --set particle_filter.particles=20001",
        "particle_filter.particles"},

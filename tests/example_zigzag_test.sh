@@ -23,7 +23,7 @@ grep -qx '\[zigzag\]' "$tmp/zigzag.toml" || fail "config has no [zigzag] table"
 head -c "$(wc -c <"$tmp/plumetrace.toml")" "$tmp/zigzag.toml" | cmp -s - "$tmp/plumetrace.toml" ||
   fail "the built-in keys differ from plumetrace config"
 grep -q zigzag "$tmp/plumetrace.toml" && fail "plumetrace config knows zigzag"
-"$zigzag" run --help | grep -q "surge-cast or zigzag" || fail "--algorithm help does not list zigzag"
+"$zigzag" run --help | grep -q "hayes or zigzag" || fail "--algorithm help does not list zigzag"
 
 # run: chosen by controller.algorithm, its key set by --set, the resolved config has it
 "$zigzag" run --set controller.algorithm=zigzag --set zigzag.leg=0.8 --set supervisor.timeout=60 \

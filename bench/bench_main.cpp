@@ -181,24 +181,21 @@ void BM_Decide_chemotaxis(benchmark::State& state) {
 }
 BENCHMARK(BM_Decide_chemotaxis)->Arg(0)->Arg(1);
 
-// one decision of the correlated random walk without (range 0 = 0) or with an upwind bias (1)
-void BM_Decide_crw(benchmark::State& state) {
+// one decision of a random walk (Params: CrwParams or LevyParams) without (range 0 = 0) or
+// with an upwind bias of 0.5 (1)
+template <class Params>
+void decide_walk(benchmark::State& state, Algorithm algorithm) {
   Scenario s;
-  s.controller.algorithm = Algorithm::kCrw;
-  s.controller.get<CrwParams>().upwind_bias = state.range(0) != 0 ? 0.5 : 0.0;
+  s.controller.algorithm = algorithm;
+  s.controller.get<Params>().upwind_bias = state.range(0) != 0 ? 0.5 : 0.0;
   state.SetLabel(state.range(0) != 0 ? "upwind_bias 0.5" : "no bias");
   bench_decide(state, s);
 }
+
+void BM_Decide_crw(benchmark::State& state) { decide_walk<CrwParams>(state, Algorithm::kCrw); }
 BENCHMARK(BM_Decide_crw)->Arg(0)->Arg(1);
 
-// one decision of the Levy walk without (range 0 = 0) or with an upwind bias (1)
-void BM_Decide_levy(benchmark::State& state) {
-  Scenario s;
-  s.controller.algorithm = Algorithm::kLevy;
-  s.controller.get<LevyParams>().upwind_bias = state.range(0) != 0 ? 0.5 : 0.0;
-  state.SetLabel(state.range(0) != 0 ? "upwind_bias 0.5" : "no bias");
-  bench_decide(state, s);
-}
+void BM_Decide_levy(benchmark::State& state) { decide_walk<LevyParams>(state, Algorithm::kLevy); }
 BENCHMARK(BM_Decide_levy)->Arg(0)->Arg(1);
 
 // one whole run in the laminar wind with walls that block (a walk meets walls often; with

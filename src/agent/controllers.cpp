@@ -17,14 +17,19 @@ void add(ControllerRegistry& r, std::string name) {
   r.add<Model, Params>(std::move(name), controller_hooks<Model, Params>());
 }
 
-}  // namespace
+// the controllers, and how many of them the library itself registers
+struct Controllers {
+  ControllerRegistry registry;
+  std::size_t built_in = 0;
+};
 
-ControllerRegistry& controller_registry() {
+Controllers& controllers() {
   // why: the built-ins are listed here, not registered from their own sources: a static library
   // leaves out the objects nothing refers to, registrars and all. One line each, in the order
   // of Algorithm; names, choices, tables and factories all come from here.
-  static ControllerRegistry registry = [] {
-    ControllerRegistry r;
+  static Controllers all = [] {
+    Controllers c;
+    ControllerRegistry& r = c.registry;
     add<Casting, CastingParams>(r, "casting");
     add<SurgeSpiral, SurgeSpiralParams>(r, "surge-spiral");
     add<SurgeCast, SurgeCastParams>(r, "surge-cast");
@@ -34,10 +39,15 @@ ControllerRegistry& controller_registry() {
     add<Crw, CrwParams>(r, "crw");
     add<Levy, LevyParams>(r, "levy");
     add<Hayes, HayesParams>(r, "hayes");
-    return r;
+    c.built_in = r.size();
+    return c;
   }();
-  return registry;
+  return all;
 }
+
+}  // namespace
+
+ControllerRegistry& controller_registry() { return controllers().registry; }
 
 void ControllerParams::fields(FieldVisitor& v) {
   const ControllerRegistry& registry = controller_registry();
@@ -68,8 +78,12 @@ std::vector<Algorithm> builtin_algorithms() {
 }
 
 std::vector<Algorithm> baseline_algorithms() {
-  return {Algorithm::kInfotaxis, Algorithm::kParticleFilter, Algorithm::kChemotaxis,
-          Algorithm::kCrw,       Algorithm::kLevy,           Algorithm::kHayes};
+  // every entry the library registers after the paper's three: a new baseline needs no line here
+  std::vector<Algorithm> out;
+  for (std::size_t i = builtin_algorithms().size(); i < controllers().built_in; ++i) {
+    out.push_back(static_cast<Algorithm>(i));
+  }
+  return out;
 }
 
 std::vector<Algorithm> library_algorithms() {

@@ -63,16 +63,29 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
   }
 }
 
-int draw_report(const std::string& out, const std::string& module,
-                const std::vector<std::string>& args, bool is_file) {
+std::string python_path() {
   // why: the reports' package is the source's; this build's copy after it lends the compiled
   // module, which the package's __init__ finds there (pkgutil.extend_path): the evidence rules'
   // Student's t quantile is the C++ library's
-  std::string python_path = data_dir() + "/python";
+  std::string path = data_dir() + "/python";
   std::error_code error;
   if (std::filesystem::is_directory(std::string(kBuildPythonDir) + "/plumetrace", error)) {
-    python_path += std::string(":") + kBuildPythonDir;
+    path += std::string(":") + kBuildPythonDir;
   }
+  return path;
+}
+
+int run_python_module(const std::string& module, const std::vector<std::string>& args) {
+  // what Python prints follows what was printed here
+  std::fflush(nullptr);
+  std::vector<std::string> argv{kPython, "-P", "-m", module};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return run_program(argv, {"PYTHONPATH=" + python_path()});
+}
+
+int draw_report(const std::string& out, const std::string& module,
+                const std::vector<std::string>& args, bool is_file) {
+  const std::string python_path = cli::python_path();
   // what the report prints follows what was printed here
   std::fflush(nullptr);
   std::vector<std::string> argv{kPython, "-P"};

@@ -1,14 +1,13 @@
 #pragma once
 
 #include <string>
-
-#include "shell.hpp"
 #include <vector>
 
 #include "options.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/store.hpp"
 #include "plumetrace/experiment/sweep.hpp"
+#include "shell.hpp"
 
 namespace plumetrace::cli {
 
@@ -29,12 +28,19 @@ void warn_incomplete(const std::vector<ExpandedSweep>& sweeps,
                      const std::vector<IncompletePoint>& incomplete, const std::string& store,
                      const std::string& extra);
 
+/// The PYTHONPATH under which the command runs Python: the source's package, then this build's
+/// copy with the compiled module.
+std::string python_path();
+
+/// Runs `python -P -m MODULE ARGS...` with python_path(); returns its exit status (as
+/// run_program).
+int run_python_module(const std::string& module, const std::vector<std::string>& args);
+
 /// Draws report.html and report.md from the results in OUT (python -P -m MODULE OUT ARGS...;
 /// the paper's report by default; with `is_file`, MODULE is a script: python -P FILE OUT ARGS);
 /// returns 0, or kIoFailure after saying that it failed. why: -P keeps the current folder off
 /// the module path, so that a file there named like a module is never run (issue 22, G4).
 int draw_report(const std::string& out, const std::string& module = "plumetrace.report",
                 const std::vector<std::string>& args = {}, bool is_file = false);
-
 
 }  // namespace plumetrace::cli

@@ -46,10 +46,11 @@ int main(int argc, char** argv) {
   ReproduceCommand reproduce(command_line(argc, argv));
   SensitivityCommand sensitivity;
   StudyCommand study;
+  BenchmarkCommand benchmark(argc, argv);
   std::vector<std::pair<CLI::App*, Command*>> commands;
   for (Command* c :
        std::initializer_list<Command*>{&run, &view, &probe, &config, &sweep, &export_store, &report,
-                                       &merge, &reproduce, &sensitivity, &study}) {
+                                       &merge, &reproduce, &sensitivity, &study, &benchmark}) {
     commands.emplace_back(c->add(app), c);
   }
 
@@ -73,7 +74,8 @@ int main(int argc, char** argv) {
       chosen = command;
       if (!command->runs_on_ranks() && launched_ranks() > 1) {
         throw ConfigError(
-            "only plumetrace sweep runs across the processes of an MPI job; run this command "
+            "only plumetrace sweep and benchmark run across the processes of an MPI job; run this "
+            "command "
             "without mpirun");
       }
       return command->run();

@@ -12,8 +12,10 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <initializer_list>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -37,6 +39,7 @@
 #include "plumetrace/experiment/evidence.hpp"
 #include "plumetrace/experiment/stats.hpp"
 #include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/io/benchmark.hpp"
 #include "plumetrace/io/exports.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
@@ -1132,6 +1135,76 @@ py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int 
   return out;
 }
 
+// A benchmark (docs/benchmark.md) into a results store, as `plumetrace benchmark` plans it: in
+// C++ threads without the GIL (a Python controller takes it for each of its steps), then, for a
+// whole campaign, the manifest and the exports. Ctrl-C (a raising signal handler) stops it
+// between runs and is raised here; every run finished is in the store, and calling again
+// computes only what is missing. `python_files` maps a controller written in Python to its file.
+py::dict benchmark(const std::string& suite_path, const std::vector<std::string>& controllers,
+                   bool only, const std::vector<std::string>& tasks, int runs,
+                   const py::list& overrides, int threads, bool share_plumes,
+                   const std::string& out_option, const std::string& store_option, bool fresh,
+                   const std::string& shard_option,
+                   const std::map<std::string, std::string>& python_files) {
+  if (runs < 0) throw pt::ConfigError("runs: must be >= 0 (0: the suite's)");
+  if (threads < 0 || threads > pt::kMaxThreads) {
+    throw pt::ConfigError("threads: must be 0 (all cores) to " + std::to_string(pt::kMaxThreads));
+  }
+  pt::BenchmarkChoice choice;
+  choice.controllers = controllers;
+  choice.only = only;
+  choice.tasks = tasks;
+  choice.runs = runs;
+  choice.overrides = settings_of(std::nullopt, overrides);
+  const pt::BenchmarkPlan plan = pt::plan_benchmark(pt::read_suite_file(suite_path), choice);
+  const pt::Shard shard = shard_option.empty() ? pt::Shard{} : pt::parse_shard(shard_option);
+  pt::check_campaign(plan.sweeps, 0);
+  const std::string out = out_option.empty()
+                              ? pt::default_output_folder(plan.suite.name, suite_path)
+                              : out_option;
+  const std::string store_path =
+      store_option.empty() ? pt::default_store_path(out, shard) : store_option;
+  if (shard.count <= 1) pt::make_output_folder(out, out_option.empty() ? "out/NAME" : "out");
+  const auto folder = std::filesystem::path(store_path).parent_path();
+  if (!folder.empty()) pt::make_output_folder(folder.string(), "the folder of store", false);
+  pt::Store store(store_path, plan.sweeps, pt::version(), fresh);
+  SignalWatch watch;
+  pt::CampaignOptions options;
+  options.threads = threads;
+  options.share_plumes = share_plumes;
+  options.stop = &watch.stop;
+  options.on_progress = watch.on_progress();
+  pt::CampaignResult result;
+  std::exception_ptr failure;
+  {
+    const RegistryReader reading;
+    py::gil_scoped_release release;
+    try {
+      result = pt::run_campaign(plan.sweeps, store, 0, options, shard);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  }
+  if (watch.signal) throw std::move(*watch.signal);
+  if (failure) std::rethrow_exception(failure);
+  py::dict d;
+  d["out"] = out;
+  d["store"] = store_path;
+  d["suite"] = plan.suite.name;
+  d["version"] = plan.suite.version;
+  d["digest"] = plan.digest;
+  d["total"] = result.total;
+  d["computed"] = result.computed;
+  d["skipped"] = result.skipped;
+  d["elapsed"] = result.elapsed;
+  d["shard"] = pt::shard_text(shard);
+  if (shard.count <= 1) {
+    pt::write_text_file(out + "/benchmark.json", pt::benchmark_manifest(plan, python_files));
+    pt::write_exports(out, plan.sweeps, store.rows(), 0);
+  }
+  return d;
+}
+
 // the values of a result field over a sweep's rows, by the field's type: outcome names, flags
 // (as bytes, made bool at the end), reals, whole numbers
 template <class T>
@@ -1529,6 +1602,12 @@ PYBIND11_MODULE(_core, m) {
         py::arg("view") = std::nullopt);
   m.def("sweep", &sweep, py::arg("sweep"), py::arg("overrides"), py::arg("runs"),
         py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
+  m.def("benchmark", &benchmark, py::arg("suite"), py::arg("controllers"), py::arg("only"),
+        py::arg("tasks"), py::arg("runs"), py::arg("overrides"), py::arg("threads"),
+        py::arg("share_plumes"), py::arg("out"), py::arg("store"), py::arg("fresh"),
+        py::arg("shard"), py::arg("python_files"),
+        "a benchmark suite's runs into a results store, its manifest and exports "
+        "(plumetrace.benchmark)");
   m.def("export_store", &export_sweep_store, py::arg("sweep"), py::arg("overrides"),
         py::arg("store"), py::arg("out"), py::arg("runs"),
         "the exports of a sweep's runs in a results store (as plumetrace report writes them); "

@@ -267,7 +267,7 @@ TEST(MpiCli, ARankLostAfterItsLastBlockUnderALauncherThatKeepsTheJobIsGivenUpOnc
 TEST(MpiCli, OnlySweepRunsUnderMpirun) {
   const Outcome o = mpirun(2, "run --json");
   EXPECT_NE(o.code, 0);
-  EXPECT_NE(o.err.find("only plumetrace sweep runs across the processes of an MPI job"),
+  EXPECT_NE(o.err.find("only plumetrace sweep and benchmark run across the processes of an MPI job"),
             std::string::npos)
       << o.err;
   EXPECT_EQ(o.out, "");

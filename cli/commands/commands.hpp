@@ -8,6 +8,9 @@
 #include "errors.hpp"
 #include "options.hpp"
 #include "plumetrace/distributed/distributed.hpp"
+#include "plumetrace/experiment/campaign.hpp"
+#include "plumetrace/experiment/store.hpp"
+#include "plumetrace/io/benchmark.hpp"
 #include "plumetrace/sim/plume_stats.hpp"
 #include "plumetrace/sim/probe.hpp"
 #include "plumetrace/view/viewer.hpp"
@@ -87,9 +90,27 @@ struct ConfigCommand final : Command {
   int run() override;
 };
 
+/// What a sweep command (or a benchmark) works on, read alike on every rank: its campaign, the
+/// shard computed, and where the store and the exports go.
+struct SweepPlan {
+  std::string name;   ///< the sweep's (the suite's) name
+  std::string label;  ///< "sweep NAME", "benchmark NAME": how messages name it
+  std::string file;   ///< the file it was read from
+  std::vector<ExpandedSweep> sweeps;
+  Shard shard;
+  std::string out;         ///< the exports' folder
+  std::string store_path;  ///< the results store
+
+  /// The progress bar's label: `label`, and the shard when there is one.
+  std::string progress_label() const;
+  /// Sets `out` (the option, else out/NAME) and `store_path` (the option, else OUT/results.sqlite
+  /// or, for a shard, OUT/part-I-of-N.sqlite); throws ConfigError when NAME is no folder name.
+  void place(const std::string& out_option, const std::string& store_option);
+};
+
 /// `plumetrace sweep SWEEP.toml ...`: a sweep file's grid of runs into a results store, across
 /// the ranks under mpirun.
-struct SweepCommand final : Command {
+struct SweepCommand : Command {
   std::string file;
   int runs = 0;
   int threads = 0;
@@ -108,6 +129,40 @@ struct SweepCommand final : Command {
   int run() override;
   std::string memory_advice() const override { return kMemoryAdvice; }
   bool runs_on_ranks() const override { return true; }
+  /// Registers the options a sweep and a benchmark share (--runs, --threads, --store, --out,
+  /// --set, --shard, --quiet, --fresh, --no-share-plumes) on `sub`.
+  void add_campaign_options(CLI::App& sub, const std::string& runs_help,
+                            const std::string& set_help);
+  /// Reads the files and plans the campaign (on every rank); throws ConfigError.
+  virtual SweepPlan plan() const;
+  /// After every run is in (on rank 0): the exports and what else the command writes, or for a
+  /// shard what its store holds; `where` says on how many ranks it ran. Returns the exit code.
+  virtual int finish(const SweepPlan& plan, const Store& store, const CampaignResult& result,
+                     const std::string& where) const;
+};
+
+/// `plumetrace benchmark [SUITE] ...`: every chosen controller on every task of a suite, into a
+/// results store (as a sweep: across the ranks under mpirun, or a shard), then the leaderboard
+/// (docs/benchmark.md); `--compare A B` compares two results. A controller given as a .py file
+/// hands the whole command to Python (python -m plumetrace.benchmark), which registers it.
+struct BenchmarkCommand final : SweepCommand {
+  std::vector<std::string> controllers;
+  std::vector<std::string> tasks;
+  bool only = false;
+  bool no_leaderboard = false;
+  std::vector<std::string> compare;
+  bool allow_runs = false;
+  /// The words after "benchmark" on the command line, handed to Python as they are.
+  std::vector<std::string> words;
+
+  BenchmarkCommand(int argc, char** argv);
+  /// The options' choice of controllers, tasks, runs and settings.
+  BenchmarkChoice choice() const;
+  CLI::App* add(CLI::App& app) override;
+  int run() override;
+  SweepPlan plan() const override;
+  int finish(const SweepPlan& plan, const Store& store, const CampaignResult& result,
+             const std::string& where) const override;
 };
 
 /// `plumetrace export SWEEP.toml... --store FILE --out DIR`: a store's exports.

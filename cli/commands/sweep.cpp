@@ -19,35 +19,6 @@ namespace plumetrace::cli {
 
 namespace {
 
-// what a sweep command works on, read alike on every rank
-struct SweepPlan {
-  std::string name;
-  std::vector<ExpandedSweep> sweeps;
-  Shard shard;
-  std::string out;
-  std::string store_path;
-};
-
-SweepPlan plan_sweep(const SweepCommand& cmd) {
-  SweepPlan plan;
-  plan.shard = cmd.shard.empty() ? Shard{} : parse_shard(cmd.shard);
-  const SweepDef def = read_sweep_file(cmd.file);
-  plan.name = def.name;
-  plan.sweeps = {expand_sweep(def, parse_sets(cmd.sets))};
-  check_campaign(plan.sweeps, cmd.runs);
-  // why: the name comes from a file; "../../etc/evil" must not lead out of out/ (issue 13, F12)
-  plan.out = cmd.out.empty() ? default_output_folder(def.name, cmd.file) : cmd.out;
-  if (!cmd.store.empty()) {
-    plan.store_path = cmd.store;
-  } else if (plan.shard.count > 1) {
-    plan.store_path = plan.out + "/part-" + std::to_string(plan.shard.index) + "-of-" +
-                      std::to_string(plan.shard.count) + ".sqlite";
-  } else {
-    plan.store_path = plan.out + "/results.sqlite";
-  }
-  return plan;
-}
-
 std::unique_ptr<Store> open_sweep_store(const SweepPlan& plan, const SweepCommand& cmd) {
   // the exports' folder first, so that one that cannot be made stops the sweep before it runs
   if (plan.shard.count <= 1) make_output_folder(plan.out, cmd.out.empty() ? "out/NAME" : "--out");
@@ -63,37 +34,6 @@ CampaignFlags sweep_flags(const SweepCommand& cmd) {
   flags.quiet = cmd.quiet;
   flags.no_share = cmd.no_share;
   return flags;
-}
-
-std::string sweep_label(const SweepPlan& plan) {
-  const std::string shard = shard_text(plan.shard);
-  return "sweep " + plan.name + (shard.empty() ? "" : " shard " + shard);
-}
-
-// after the runs: the exports and the summary, or for a shard what its store holds
-int finish_sweep(const SweepPlan& plan, const Store& store, int runs, const CampaignResult& result,
-                 const std::string& where, bool quiet) {
-  const auto counts = [&] {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "%lld runs (%lld computed now, %lld from the store) in %.1f s",
-                  static_cast<long long>(result.total), static_cast<long long>(result.computed),
-                  static_cast<long long>(result.skipped), result.elapsed);
-    return std::string(buf) + where;
-  };
-  if (plan.shard.count > 1) {
-    std::printf(
-        "shard %s of sweep %s: %s; store %s; merge the parts' stores with plumetrace "
-        "merge\n",
-        shard_text(plan.shard).c_str(), plan.name.c_str(), counts().c_str(), store.path().c_str());
-    return 0;
-  }
-  const auto rows = store.rows();
-  make_output_folder(plan.out, "--out");
-  write_exports(plan.out, plan.sweeps, rows, runs);
-  if (!quiet) std::fputs(summary_table(plan.sweeps, rows, runs).c_str(), stdout);
-  std::printf("%s; store %s; exports in %s/\n", counts().c_str(), store.path().c_str(),
-              plan.out.c_str());
-  return 0;
 }
 
 std::string ranks_text(const std::vector<std::int64_t>& runs_per_rank) {
@@ -136,7 +76,7 @@ int agree_on_sweep(Ranks& ranks, const SweepCommand& cmd, std::optional<SweepPla
   const bool root = ranks.rank() == 0;
   std::exception_ptr failure;
   try {
-    plan = plan_sweep(cmd);
+    plan = cmd.plan();
     if (root) store = open_sweep_store(*plan, cmd);
   } catch (...) {
     failure = std::current_exception();
@@ -184,7 +124,7 @@ int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
 
     JobReport report;
     CampaignResult result;
-    if (!run_with_progress(sweep_label(*plan), plan->sweeps, *store, cmd.runs, sweep_flags(cmd),
+    if (!run_with_progress(plan->progress_label(), plan->sweeps, *store, cmd.runs, sweep_flags(cmd),
                            result, plan->shard, coordinator(ranks, &report))) {
       std::fprintf(stderr, "plumetrace: the MPI job stopped: %s; the store is consistent\n",
                    stop_cause(report).c_str());
@@ -196,11 +136,10 @@ int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
       std::fprintf(stderr, "plumetrace: the MPI job stopped early: %s; all %lld runs are in '%s'\n",
                    stop_cause(report).c_str(), static_cast<long long>(result.total),
                    store->path().c_str());
-      finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank), cmd.quiet);
+      cmd.finish(*plan, *store, result, ranks_text(report.runs_per_rank));
       return kInterrupted;
     }
-    return finish_sweep(*plan, *store, cmd.runs, result, ranks_text(report.runs_per_rank),
-                        cmd.quiet);
+    return cmd.finish(*plan, *store, result, ranks_text(report.runs_per_rank));
   } catch (...) {
     // the other ranks may wait for this one: end the job once the error is reported
     ranks.abandon(exit_code(std::current_exception()));
@@ -210,49 +149,102 @@ int run_sweep_on_ranks(const SweepCommand& cmd, Ranks& ranks) {
 
 }  // namespace
 
+std::string SweepPlan::progress_label() const {
+  const std::string part = shard_text(shard);
+  return label + (part.empty() ? "" : " shard " + part);
+}
+
+void SweepPlan::place(const std::string& out_option, const std::string& store_option) {
+  // why: the name comes from a file; "../../etc/evil" must not lead out of out/ (issue 13, F12)
+  out = out_option.empty() ? default_output_folder(name, file) : out_option;
+  store_path = store_option.empty() ? default_store_path(out, shard) : store_option;
+}
+
+SweepPlan SweepCommand::plan() const {
+  SweepPlan plan;
+  plan.shard = shard.empty() ? Shard{} : parse_shard(shard);
+  const SweepDef def = read_sweep_file(file);
+  plan.name = def.name;
+  plan.file = file;
+  plan.sweeps = {expand_sweep(def, parse_sets(sets))};
+  check_campaign(plan.sweeps, runs);
+  plan.place(out, store);
+  plan.label = "sweep " + plan.name;
+  return plan;
+}
+
+// after the runs: the exports and the summary, or for a shard what its store holds
+int SweepCommand::finish(const SweepPlan& plan, const Store& store, const CampaignResult& result,
+                         const std::string& where) const {
+  const auto counts = [&] {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%lld runs (%lld computed now, %lld from the store) in %.1f s",
+                  static_cast<long long>(result.total), static_cast<long long>(result.computed),
+                  static_cast<long long>(result.skipped), result.elapsed);
+    return std::string(buf) + where;
+  };
+  if (plan.shard.count > 1) {
+    std::printf(
+        "shard %s of %s: %s; store %s; merge the parts' stores with plumetrace "
+        "merge\n",
+        shard_text(plan.shard).c_str(), plan.label.c_str(), counts().c_str(), store.path().c_str());
+    return 0;
+  }
+  const auto rows = store.rows();
+  make_output_folder(plan.out, "--out");
+  write_exports(plan.out, plan.sweeps, rows, runs);
+  if (!quiet) std::fputs(summary_table(plan.sweeps, rows, runs).c_str(), stdout);
+  std::printf("%s; store %s; exports in %s/\n", counts().c_str(), store.path().c_str(),
+              plan.out.c_str());
+  return 0;
+}
+
 CLI::App* SweepCommand::add(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "sweep",
       "run a sweep file's grid of runs into a results store (under mpirun: across the ranks)");
   sub->add_option("sweep", file, "sweep TOML file")->required()->check(not_empty());
-  sub->add_option("--runs", runs, "runs per point (default: the sweep file's)")
-      ->check(whole_number(1, kMaxCampaignRuns));
-  sub->add_option("--threads", threads,
-                  "worker threads (default: all cores; under mpirun, per rank: the cores shared "
-                  "among the ranks on each machine)")
-      ->check(whole_number(1, kMaxThreads));
-  sub->add_option("--store", store,
-                  "results store (default: OUT/results.sqlite; with --shard "
-                  "OUT/part-I-of-N.sqlite)")
-      ->check(not_empty());
-  sub->add_option("--out", out, "output folder for exports (default: out/NAME)")
-      ->check(not_empty());
-  sub->add_option("--set", sets, "override a key of the base scenario (repeatable)")
-      ->allow_extra_args(false);
-  sub->add_option("--shard", shard,
-                  "compute only part I of N (I/N, e.g. 2/8) for job arrays; merge the parts' "
-                  "stores with plumetrace merge");
-  sub->add_flag("--quiet", quiet, "no progress bar and no summary table");
-  sub->add_flag("--fresh", fresh,
-                "discard every run the store holds (needed only when the base scenario, a --set or "
-                "the seed changed; a sweep given more values keeps its stored runs)");
-  sub->add_flag("--no-share-plumes", no_share,
-                "simulate the plume anew for every run (same results, slower)");
+  add_campaign_options(*sub, "runs per point (default: the sweep file's)",
+                       "override a key of the base scenario (repeatable)");
   return sub;
+}
+
+void SweepCommand::add_campaign_options(CLI::App& sub, const std::string& runs_help,
+                                        const std::string& set_help) {
+  sub.add_option("--runs", runs, runs_help)->check(whole_number(1, kMaxCampaignRuns));
+  sub.add_option("--threads", threads,
+                 "worker threads (default: all cores; under mpirun, per rank: the cores shared "
+                 "among the ranks on each machine)")
+      ->check(whole_number(1, kMaxThreads));
+  sub.add_option("--store", store,
+                 "results store (default: OUT/results.sqlite; with --shard "
+                 "OUT/part-I-of-N.sqlite)")
+      ->check(not_empty());
+  sub.add_option("--out", out, "output folder for exports (default: out/NAME)")->check(not_empty());
+  sub.add_option("--set", sets, set_help)->allow_extra_args(false);
+  sub.add_option("--shard", shard,
+                 "compute only part I of N (I/N, e.g. 2/8) for job arrays; merge the parts' "
+                 "stores with plumetrace merge");
+  sub.add_flag("--quiet", quiet, "no progress bar and no summary table");
+  sub.add_flag("--fresh", fresh,
+               "discard every run the store holds (needed only when the base scenario, a --set or "
+               "the seed changed; a sweep given more values keeps its stored runs)");
+  sub.add_flag("--no-share-plumes", no_share,
+               "simulate the plume anew for every run (same results, slower)");
 }
 
 int SweepCommand::run() {
   ranks.emplace();
   if (ranks->size() > 1) return run_sweep_on_ranks(*this, *ranks);
-  const SweepPlan plan = plan_sweep(*this);
+  const SweepPlan plan = this->plan();
   print_sweep_warnings(plan.sweeps);
   const auto results = open_sweep_store(plan, *this);
   CampaignResult result;
-  if (!run_with_progress(sweep_label(plan), plan.sweeps, *results, runs, sweep_flags(*this), result,
-                         plan.shard)) {
+  if (!run_with_progress(plan.progress_label(), plan.sweeps, *results, runs, sweep_flags(*this),
+                         result, plan.shard)) {
     return kInterrupted;
   }
-  return finish_sweep(plan, *results, runs, result, "", quiet);
+  return finish(plan, *results, result, "");
 }
 
 }  // namespace plumetrace::cli

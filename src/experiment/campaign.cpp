@@ -9,6 +9,12 @@ int runs_per_point(const ExpandedSweep& sweep, int runs_override) {
   return runs_override > 0 ? runs_override : sweep.def.runs;
 }
 
+std::string default_store_path(const std::string& out, const Shard& shard) {
+  if (shard.count <= 1) return out + "/results.sqlite";
+  return out + "/part-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) +
+         ".sqlite";
+}
+
 Shard parse_shard(const std::string& text) {
   Shard shard;
   const auto slash = text.find('/');

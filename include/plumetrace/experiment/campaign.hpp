@@ -23,6 +23,10 @@ struct Shard {
 /// Parses "i/n" with 1 <= i <= n; throws ConfigError naming --shard.
 Shard parse_shard(const std::string& text);
 
+/// Where a campaign's store goes in its output folder OUT when no store is named:
+/// OUT/results.sqlite, or for a shard OUT/part-I-of-N.sqlite (merged with plumetrace merge).
+std::string default_store_path(const std::string& out, const Shard& shard);
+
 /// "i/n", or "" for the whole campaign (1/1).
 std::string shard_text(const Shard& shard);
 

@@ -5,7 +5,6 @@ Every case is built from a synthetic OUT/benchmark.json and runs.csv of known ou
 
 import csv
 import json
-import math
 import os
 import re
 import subprocess

@@ -20,7 +20,6 @@ import io
 import json
 import math
 import sys
-from pathlib import Path
 from typing import Optional, Sequence
 
 import numpy as np

@@ -12,6 +12,7 @@ import sys
 
 import pytest
 
+from plumetrace.benchmark import compare, leaderboard
 from plumetrace.benchmark.compare import compare_files
 from plumetrace.benchmark.data import load_results
 from plumetrace.benchmark.leaderboard import compute_board, write_leaderboard
@@ -80,8 +81,17 @@ def score(board, controller):
 
 
 def run_module(module, *args):
+    """`python3 -m module args` in a process of its own."""
     return subprocess.run([sys.executable, "-m", module, *map(str, args)], capture_output=True,
                           text=True, env=os.environ.copy(), timeout=300)
+
+
+def run_main(capsys, main, *args):
+    """A command's main(args) in this process (faster than run_module), as run_module reports."""
+    capsys.readouterr()
+    code = main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return subprocess.CompletedProcess(args, code, out, err)
 
 
 ONE_TASK = [("laminar", 1, "reach")]
@@ -295,6 +305,14 @@ def test_missing_runs_are_marked_and_an_empty_cell_shows_no_runs(tmp_path):
     assert "a x gappy: 7 of 10 runs" in md and "b x gappy: no runs" in md
 
 
+def test_a_runs_file_without_rows_gives_a_page_of_empty_cells(tmp_path):
+    out = write_results(tmp_path, ONE_TASK, [("a", False), ("b", True)], 5, lambda *_: None)
+    board = write_leaderboard(out)
+    assert board["title"] == "toy v1: no controller has runs on every task"
+    assert all(s["rank"] is None for s in board["scores"])
+    assert (out / "leaderboard.md").read_text().count("no runs") >= 2
+
+
 def test_rows_of_trials_beyond_the_runs_asked_for_are_left_out(tmp_path):
     out = write_results(tmp_path, ONE_TASK, [("a", False)], 8,
                         lambda t, c, trial, a: win_if(trial < 4))
@@ -389,15 +407,16 @@ def test_the_command_writes_the_pages_and_exits_0(tmp_path):
     (lambda m: m["suite"]["tasks"].append(dict(m["suite"]["tasks"][0])),
      "suite.tasks[1].name: task 'laminar' is listed twice"),
     (lambda m: m["controllers"][0].update(null_model="no"), "controllers[0].null_model"),
+    (lambda m: m["controllers"].clear(), "controllers: no controller"),
     (lambda m: m.update(plumetrace_benchmark=9), "not a plumetrace benchmark manifest"),
     (lambda m: m.update(runs_file="/etc/passwd"), "runs_file"),
 ])
-def test_a_malformed_manifest_exits_2_naming_the_file_and_key(tmp_path, edit, words):
+def test_a_malformed_manifest_exits_2_naming_the_file_and_key(tmp_path, edit, words, capsys):
     out = write_results(tmp_path, ONE_TASK, [("a", False)], 2, lambda t, c, trial, a: win_if(1))
     manifest = json.loads((out / "benchmark.json").read_text())
     edit(manifest)
     (out / "benchmark.json").write_text(json.dumps(manifest))
-    done = run_module("plumetrace.benchmark.leaderboard", out)
+    done = run_main(capsys, leaderboard.main, out)
     assert done.returncode == 2
     assert str(out / "benchmark.json") in done.stderr and words in done.stderr
     assert not (out / "leaderboard.html").exists()
@@ -410,17 +429,17 @@ def test_a_malformed_manifest_exits_2_naming_the_file_and_key(tmp_path, edit, wo
     (("success,1,", "success,0,"), "does not match outcome"),
     (("controller.algorithm,", "algorithm,"), "no column controller.algorithm"),
 ])
-def test_a_malformed_runs_file_exits_2_naming_the_line(tmp_path, swap, words):
+def test_a_malformed_runs_file_exits_2_naming_the_line(tmp_path, swap, words, capsys):
     out = write_results(tmp_path, ONE_TASK, [("a", False)], 2, lambda t, c, trial, a: win_if(1))
     text = (out / "runs.csv").read_text()
     (out / "runs.csv").write_text(text.replace(*swap, 1))
-    done = run_module("plumetrace.benchmark.leaderboard", out)
+    done = run_main(capsys, leaderboard.main, out)
     assert done.returncode == 2 and str(out / "runs.csv") in done.stderr
     assert words in done.stderr
 
 
-def test_a_folder_without_a_manifest_exits_2_naming_it(tmp_path):
-    done = run_module("plumetrace.benchmark.leaderboard", tmp_path)
+def test_a_folder_without_a_manifest_exits_2_naming_it(tmp_path, capsys):
+    done = run_main(capsys, leaderboard.main, tmp_path)
     assert done.returncode == 2 and str(tmp_path / "benchmark.json") in done.stderr
 
 
@@ -483,12 +502,12 @@ def test_compare_finds_nothing_between_a_result_and_itself(tmp_path):
     assert result["beyond_noise"] == 0
 
 
-def test_compare_lists_cells_in_one_file_only(tmp_path):
+def test_compare_lists_cells_in_one_file_only(tmp_path, capsys):
     a, b = pair(tmp_path, changed=False, extra_b=[("new", False)])
     result = compare_files(a, b)
     assert sorted(result["only_b"]) == [["a", "new"], ["b", "new"], ["c", "new"]]
     assert "new" not in {s["controller"] for s in result["scores"]}
-    done = run_module("plumetrace.benchmark.compare", a, b)
+    done = run_main(capsys, compare.main, a, b)
     assert done.returncode == 0 and "a, new: only in B" in done.stdout
 
 
@@ -506,23 +525,23 @@ def test_compare_prints_what_is_beyond_noise(tmp_path):
     ({"suite_b": "other"}, "different suites: 'toy' and 'other'"),
     ({"version_b": "2"}, "different versions of suite 'toy': 1 and 2"),
 ])
-def test_compare_refuses_other_suites_naming_both_files(tmp_path, kwargs, words):
+def test_compare_refuses_other_suites_naming_both_files(tmp_path, kwargs, words, capsys):
     a, b = pair(tmp_path, **kwargs)
     if "digest_b" in kwargs:  # a changed task under the same version
         board = json.loads(b.read_text())
         board["suite"]["tasks"][0]["digest"] = "ffffffffffffffff"
         b.write_text(json.dumps(board))
-    done = run_module("plumetrace.benchmark.compare", a, b)
+    done = run_main(capsys, compare.main, a, b)
     assert done.returncode == 2 and done.stdout == ""
     assert str(a) in done.stderr and str(b) in done.stderr and words in done.stderr
 
 
-def test_compare_says_same_tasks_other_run_counts_and_needs_allow_runs(tmp_path):
+def test_compare_says_same_tasks_other_run_counts_and_needs_allow_runs(tmp_path, capsys):
     a, b = pair(tmp_path, runs_b=20, digest_b="00000000000000cc")
-    done = run_module("plumetrace.benchmark.compare", a, b)
+    done = run_main(capsys, compare.main, a, b)
     assert done.returncode == 2 and str(a) in done.stderr and str(b) in done.stderr
     assert "same tasks, other run counts" in done.stderr and "--allow-runs" in done.stderr
-    done = run_module("plumetrace.benchmark.compare", a, b, "--allow-runs")
+    done = run_main(capsys, compare.main, a, b, "--allow-runs")
     assert done.returncode == 0, done.stderr
     result = compare_files(a, b, allow_runs=True)
     assert result["relation"] == "runs" and not result["paired"]
@@ -530,16 +549,16 @@ def test_compare_says_same_tasks_other_run_counts_and_needs_allow_runs(tmp_path)
 
 @pytest.mark.parametrize("content", ['{"plumetrace_leaderboard": 1}', "[1, 2]", "not json",
                                     '{"plumetrace_results": 1, "sweeps": []}'])
-def test_compare_exits_2_naming_a_file_that_is_not_a_leaderboard(tmp_path, content):
+def test_compare_exits_2_naming_a_file_that_is_not_a_leaderboard(tmp_path, content, capsys):
     a, _ = pair(tmp_path, changed=False)
     bad = tmp_path / "bad.json"
     bad.write_text(content)
-    done = run_module("plumetrace.benchmark.compare", a, bad)
+    done = run_main(capsys, compare.main, a, bad)
     assert done.returncode == 2 and str(bad) in done.stderr and str(a) not in done.stderr
 
 
 def test_compare_exits_3_when_a_file_cannot_be_read(tmp_path, monkeypatch, capsys):
-    from plumetrace.benchmark import compare, data
+    from plumetrace.benchmark import data
     from plumetrace._files import BadPath
 
     a, b = pair(tmp_path, changed=False)

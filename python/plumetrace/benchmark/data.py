@@ -169,6 +169,8 @@ def check_manifest(manifest, path: Path) -> dict:
             c.fail(f"{where}.robots", f"must be at least 1, not {t['robots']}")
         c.get(t, "timeout", where, float, optional=True)
     controllers = c.get(manifest, "controllers", "", list)
+    if not controllers:
+        c.fail("controllers", "no controller")
     names = set()
     for i, k in enumerate(controllers):
         where = f"controllers[{i}]"

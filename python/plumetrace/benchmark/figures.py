@@ -88,7 +88,9 @@ def score_figure(path: Path, board: dict) -> Path:
         ax.annotate(f"rank {s['rank']} ({ranks})", (1.0, i), xycoords=("axes fraction", "data"),
                     xytext=(6, 0), textcoords="offset points", va="center", fontsize=8)
     ax.set_yticks(range(len(ranked)), [_label(s) for s in ranked])
-    ax.set_ylim(len(ranked) - 0.5, -0.5)
+    ax.set_ylim(max(1, len(ranked)) - 0.5, -0.5)
+    if not ranked:
+        ax.text(0.5, 0.0, "no controller has runs on every task", ha="center", va="center")
     ax.set_xlim(0.0, 1.0)
     ax.set_xlabel("score: mean success rate over tasks (95% paired bootstrap interval)")
     ax.grid(axis="x", color="#e5e5e5")

@@ -91,7 +91,7 @@ def score_figure(path: Path, board: dict) -> Path:
     ax.set_ylim(max(1, len(ranked)) - 0.5, -0.5)
     if not ranked:
         ax.text(0.5, 0.0, "no controller has runs on every task", ha="center", va="center")
-    ax.set_xlim(0.0, 1.0)
+    ax.set_xlim(-0.03, 1.03)  # why: a score of 0 or 1 is drawn whole, inside the frame
     ax.set_xlabel("score: mean success rate over tasks (95% paired bootstrap interval)")
     ax.grid(axis="x", color="#e5e5e5")
     return _save(fig, path)

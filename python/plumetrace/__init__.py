@@ -24,7 +24,9 @@ your own controller), ``plumetrace.env`` (a Gymnasium-style environment), ``plum
 ``python3 -m plumetrace.report OUT_DIR``, and ``plumetrace.report(rows, out=...)`` for any
 sweep), ``plumetrace.sweeps`` (dict sweeps and their statistics), ``plumetrace.calibrate`` (the
 calibration of the paper's unknowns), ``plumetrace.evidence`` (the statistical tests studies decide
-with). ``dir(plumetrace)`` lists all of it.
+with), ``plumetrace.benchmark`` (a benchmark's leaderboard, ``python3 -m
+plumetrace.benchmark.leaderboard OUT``, and the comparison of two results). ``dir(plumetrace)``
+lists all of it.
 """
 
 __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning", "StoreError",
@@ -37,8 +39,8 @@ __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning",
 __path__ = __import__("pkgutil").extend_path(__path__, __name__)
 
 # the submodules a user imports, loaded on first use
-_SUBMODULES = ("calibrate", "controllers", "env", "evidence", "plots", "report", "studies",
-               "sweeps")
+_SUBMODULES = ("benchmark", "calibrate", "controllers", "env", "evidence", "plots", "report",
+               "studies", "sweeps")
 
 
 def __getattr__(name):

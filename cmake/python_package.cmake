@@ -17,7 +17,7 @@ file(COPY ${SRC}/python/plumetrace DESTINATION ${DEST}
      PATTERN __pycache__ EXCLUDE PATTERN "*.pyc" EXCLUDE PATTERN "_core.*" EXCLUDE)
 # the studies: what `plumetrace.studies.NAME` finds (sweep files, presets, study.toml) and
 # the reports' code kept beside the study
-foreach(study lochmatter2008 meander baselines)
+foreach(study lochmatter2008 meander baselines benchmark)
   file(COPY ${SRC}/studies/${study}/ DESTINATION ${pkg}/studies/${study}
        FILES_MATCHING PATTERN "*.toml" PATTERN "*.py" PATTERN __pycache__ EXCLUDE)
 endforeach()

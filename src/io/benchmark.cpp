@@ -147,9 +147,12 @@ std::string benchmark_manifest(const BenchmarkPlan& plan,
     const bool built_in = std::any_of(library.begin(), library.end(),
                                       [&](Algorithm a) { return algorithm_name(a) == name; });
     const auto file = python_files.find(name);
-    const char* origin = built_in                     ? "built-in"
-                         : file != python_files.end() ? "python"
-                                                      : "registered";
+    const char* origin = "registered";
+    if (file != python_files.end()) {
+      origin = "python";
+    } else if (built_in) {
+      origin = "built-in";
+    }
     controllers.push_back(
         {{"name", name},
          {"origin", origin},

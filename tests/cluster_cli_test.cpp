@@ -264,11 +264,26 @@ TEST(MpiCli, ARankLostAfterItsLastBlockUnderALauncherThatKeepsTheJobIsGivenUpOnc
   EXPECT_EQ(read_file(out + "/runs.csv") + read_file(out + "/summary.csv"), baseline(sweep));
 }
 
+TEST(MpiCli, ABenchmarkOnTwoRanksEqualsOneProcess) {
+  const std::string suite = PLUMETRACE_SOURCE_DIR "/tests/support/mini_suite.toml";
+  const std::string one = testing::temp_path("bench_one", "");
+  const std::string two = testing::temp_path("bench_two", "");
+  ASSERT_EQ(plumetrace("benchmark " + suite + " --no-leaderboard --quiet --out " + one).code, 0);
+  const Outcome o = mpirun(2, "benchmark " + suite + " --no-leaderboard --quiet --out " + two);
+  ASSERT_EQ(o.code, 0) << o.err;
+  const auto runs = runs_per_rank(o.out);
+  ASSERT_EQ(runs.size(), 2u) << o.out;
+  EXPECT_EQ(runs[0] + runs[1], 16);
+  EXPECT_EQ(read_file(two + "/runs.csv"), read_file(one + "/runs.csv"));
+  EXPECT_EQ(read_file(two + "/benchmark.json"), read_file(one + "/benchmark.json"));
+}
+
 TEST(MpiCli, OnlySweepRunsUnderMpirun) {
   const Outcome o = mpirun(2, "run --json");
   EXPECT_NE(o.code, 0);
-  EXPECT_NE(o.err.find("only plumetrace sweep and benchmark run across the processes of an MPI job"),
-            std::string::npos)
+  EXPECT_NE(
+      o.err.find("only plumetrace sweep and benchmark run across the processes of an MPI job"),
+      std::string::npos)
       << o.err;
   EXPECT_EQ(o.out, "");
 }

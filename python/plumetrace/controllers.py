@@ -242,6 +242,11 @@ class ParamValues(Mapping):
         return f"ParamValues({self._values!r})"
 
 
+# lists that register_controller appends each name it registers to, while code that wants to
+# know what a file registers runs it (plumetrace.benchmark.load_controllers)
+_RECORDERS = []
+
+
 def register_controller(name, factory, params=None):
     """Registers `factory` (a class or function ``f(params, rng)``) as the controller `name` of
     every run of this process, with the keys `params` declares (default: ``factory.params``), a
@@ -277,6 +282,8 @@ def register_controller(name, factory, params=None):
         return factory(ParamValues(values), rng)
 
     _core.register_controller(name, keys, make)
+    for names in _RECORDERS:
+        names.append(name)
     return factory
 
 

@@ -36,23 +36,27 @@ def load_controllers(path):
     class name in kebab case ("MyWalk" -> "my-walk"). Raises BadPath naming the file when it
     cannot be read, fails on import, or defines no controller."""
     from .. import api
+    from .. import controllers
     from ..controllers import Controller
 
     p = Path(path)
     if p.suffix != ".py" or not p.is_file():
         raise BadPath(f"--controller '{path}': not a Python file (.py) that exists")
-    before = set(api.algorithms())
     name = "plumetrace_entry_" + re.sub(r"\W", "_", p.stem)
     spec = importlib.util.spec_from_file_location(name, p)
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
+    entered = []
+    controllers._RECORDERS.append(entered)
     try:
         spec.loader.exec_module(module)
     except Exception as e:  # the file's own error, named with the file
         del sys.modules[name]
         raise BadPath(f"--controller '{path}': importing it raised {type(e).__name__}: {e}") \
             from e
-    entered = [n for n in api.algorithms() if n not in before]
+    finally:
+        controllers._RECORDERS.remove(entered)
+    entered = list(dict.fromkeys(entered))
     if entered:
         return entered
     classes = [c for c in vars(module).values()

@@ -1,5 +1,7 @@
 // Fuzz target: a study folder's study.toml, read and checked as `plumetrace study` does
-// (read_study_file, its sweep files, check_campaign, the outputs' folder under out/).
+// (read_study_file, its sweep files, check_campaign, the outputs' folder under out/); and the
+// same bytes as a benchmark suite file, read and planned as `plumetrace benchmark` does
+// (read_suite_file, plan_benchmark, check_campaign, the outputs' folder).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -10,7 +12,9 @@
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/sweep.hpp"
+#include "plumetrace/io/benchmark.hpp"
 #include "plumetrace/io/study_file.hpp"
+#include "plumetrace/io/suite_file.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 
 namespace pf = plumetrace::fuzz;
@@ -78,6 +82,33 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const fs::path below = fs::path(out).lexically_normal();
     if (below.parent_path() != "out" || below.filename() == ".." || below.filename() == ".") {
       pf::finding("the study's outputs would leave out/: " + out);
+    }
+  });
+
+  pf::write_file(folder / "suite.toml",
+                 std::string_view(reinterpret_cast<const char*>(data), size));
+  pf::guarded([&] {
+    const plumetrace::SuiteFile suite =
+        plumetrace::read_suite_file((folder / "suite.toml").string());
+    // what the reader promises of an accepted suite
+    for (std::size_t i = 0; i < suite.tasks.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (suite.tasks[i].name == suite.tasks[j].name) {
+          pf::finding("read_suite_file accepted two tasks named " + suite.tasks[i].name);
+        }
+      }
+    }
+    if (suite.name.empty() || suite.version.empty() || suite.tasks.empty() ||
+        suite.controllers.empty()) {
+      pf::finding("read_suite_file accepted a suite without name, version, tasks or controllers");
+    }
+    if (suite.tasks.size() * suite.controllers.size() > kMaxPoints) return;
+    const plumetrace::BenchmarkPlan plan = plumetrace::plan_benchmark(suite, {});
+    plumetrace::check_campaign(plan.sweeps, 0);
+    const std::string out = plumetrace::default_output_folder(suite.name, suite.file);
+    const fs::path below = fs::path(out).lexically_normal();
+    if (below.parent_path() != "out" || below.filename() == ".." || below.filename() == ".") {
+      pf::finding("the benchmark's outputs would leave out/: " + out);
     }
   });
   return 0;

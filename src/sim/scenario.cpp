@@ -769,7 +769,7 @@ void validate(const Scenario& scenario) {
                   " m/s and the arena's length: raise wind.vx or set sim.warmup)"
             : "");
   steps("supervisor.timeout", scenario.supervisor.timeout, "");
-  check_wind_field(scenario.wind, wind_region(a), dt);
+  check_wind_field(scenario.wind, wind_context(scenario));
   check_controller(scenario.controller);
   const double per_step = scenario.plume.release_rate * dt;
   if (per_step > kMaxReleasePerStep) {
@@ -825,6 +825,12 @@ Scenario build_scenario(const std::vector<Setting>& settings) {
   derive_scenario(scenario);
   validate(scenario);
   return scenario;
+}
+
+WindContext wind_context(const Scenario& scenario) {
+  const double dt = scenario.sim.dt;
+  const auto warmup_steps = static_cast<double>(std::llround(scenario.sim.warmup / dt));
+  return {scenario.wind.velocity, wind_region(scenario.arena), dt, warmup_steps * dt};
 }
 
 double crossing_ratio(const Scenario& scenario) {

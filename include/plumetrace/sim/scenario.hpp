@@ -252,6 +252,11 @@ struct Scenario {
   void read_fields(FieldReader& v) const;
 };
 
+/// The wind field's context in a run of `scenario`: the mean wind (wind.vx, wind.vy, wind.vz),
+/// the arena, sim.dt, and the robots' release after the warm-up's whole steps
+/// (llround(sim.warmup / sim.dt) * sim.dt, as warm_up takes them).
+WindContext wind_context(const Scenario& scenario);
+
 /// The most steps of sim.dt a warm-up or a run may take: 1e7, 270 times the paper's run (37500
 /// steps), about a minute of the default plume. why: a tiny sim.dt would otherwise run for hours
 /// without a word (1.3e-6 s: two hours; issue 13, F23).

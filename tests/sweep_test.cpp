@@ -457,6 +457,27 @@ TEST(ConfigHash, IsOfTheValuesNotOfTheHelpTexts) {
   EXPECT_NE(scenario_hash(other), scenario_hash(Scenario{}));
 }
 
+// as for the baselines, adding the switching wind changed no stored config or hash of a run in
+// another wind: its table is in a run's config only when it blows there
+TEST(ConfigHash, HoldsTheSwitchingWindsKeysOnlyWhereItBlows) {
+  Scenario laminar, meander, switching;
+  meander.wind.model = WindModel::kMeander;
+  switching.wind.model = WindModel::kSwitching;
+  for (const Scenario* s : {&laminar, &meander}) {
+    EXPECT_EQ(canonical_config(*s).find("\nswitching."), std::string::npos);
+    EXPECT_EQ(scenario_to_toml(*s, ConfigKeys::kOfTheRun).find("[switching]"), std::string::npos);
+    EXPECT_NE(scenario_to_toml(*s, ConfigKeys::kAll).find("[switching]"), std::string::npos);
+  }
+  EXPECT_NE(canonical_config(switching).find("\nswitching.angle_deg=45.0\n"), std::string::npos);
+  // a change of its keys leaves the other winds' runs alone
+  Scenario other = laminar;
+  other.wind.get<SwitchingParams>().angle_deg = 10.0;
+  EXPECT_EQ(scenario_hash(other), scenario_hash(laminar));
+  Scenario turned = switching;
+  turned.wind.get<SwitchingParams>().angle_deg = 10.0;
+  EXPECT_NE(scenario_hash(turned), scenario_hash(switching));
+}
+
 TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
   Scenario a, b;
   b.arena.y_max = 3.0;  // the robot's wall; the constant wind's plume does not see it

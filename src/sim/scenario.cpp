@@ -994,6 +994,14 @@ void for_each_value_of(const Scenario& scenario, ConfigKeys keys,
       unused_tables.push_back(registry[i].table);
     }
   }
+  // why: likewise for the wind fields after those of 0.6.0 (constant, meander; the switching
+  // wind and later ones): a field's table is in a run's config only when it blows there, so
+  // that adding a field changes no stored config of a run in another wind
+  const WindRegistry& winds = wind_field_registry();
+  const std::size_t always_winds = static_cast<std::size_t>(WindModel::kMeander) + 1;
+  for (std::size_t i = always_winds; keys == ConfigKeys::kOfTheRun && i < winds.size(); ++i) {
+    if (i != static_cast<std::size_t>(scenario.wind.model)) unused_tables.push_back(winds[i].table);
+  }
   for_each_value(scenario, [&](const FieldValue& v) {
     if (std::find(unused_tables.begin(), unused_tables.end(), v.table) == unused_tables.end()) {
       f(v);

@@ -386,7 +386,8 @@ void for_each_value(const Scenario& scenario, const std::function<void(const Fie
 /// Which keys scenario_to_toml writes.
 enum class ConfigKeys {
   kAll,       ///< every key, the tables of every registered controller included
-  kOfTheRun,  ///< a controller registered outside the library only when it is the one that runs
+  kOfTheRun,  ///< a controller after the paper's three, or a wind field after the meander, only
+              ///< when it is the one that runs
 };
 
 /// The fully resolved scenario as TOML that reads back to the same scenario: its keys, in the

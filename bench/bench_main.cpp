@@ -22,7 +22,7 @@ namespace {
 
 // the scenario's wind field, as a run of seed 1, trial 0 makes it
 std::unique_ptr<WindField> make_wind(const Scenario& s) {
-  return make_wind_field(s.wind, wind_region(s.arena), Rng(derive_seed(1, 0, Stream::kWind)));
+  return make_wind_field(s.wind, wind_context(s), Rng(derive_seed(1, 0, Stream::kWind)));
 }
 
 // the default scenario, in the laminar wind (range 0) or the default meandering wind (1)

@@ -668,7 +668,7 @@ TEST(Plume, SnapshotIsTheFilamentArrays) {
 
 TEST(Plume, ReachesAnswersExactlyAsTheFullSum) {
   Scenario s;
-  const auto wind = make_wind_field(s.wind, wind_region(s.arena), Rng(99));
+  const auto wind = make_wind_field(s.wind, wind_context(s), Rng(99));
   FilamentPlume plume(s.plume, s.source, s.arena.x_max, 99);
   for (int i = 0; i < 700; ++i) plume.step(*wind, s.sim.dt);
   Rng rng(5);

@@ -10,11 +10,13 @@
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/env/meander_wind.hpp"
+#include "plumetrace/env/switching_wind.hpp"
 #include "plumetrace/experiment/sweep.hpp"
 #include "plumetrace/io/results_io.hpp"
 #include "plumetrace/io/scenario_io.hpp"
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
+#include "plumetrace/sim/probe.hpp"
 #include "plumetrace/sim/world.hpp"
 #include "support/algorithms.hpp"
 #include "support/temp_path.hpp"
@@ -64,6 +66,89 @@ TEST(Scenario, MeanderFilesAreTheDefaultsInTheMeanderingWind) {
   const Scenario weak = load_scenario(kScenarios + "meander-weak.toml", {});
   EXPECT_EQ(weak.wind.get<MeanderParams>().damping, 0.071);
   EXPECT_EQ(weak.wind.get<MeanderParams>().bandwidth, 0.71);
+}
+
+TEST(Scenario, SwitchFilesAreThePapersSetupInTheSwitchingWind) {
+  // switch-once: the keys' defaults, in an arena wide enough for the turned plume and a ring
+  // long enough to reach the robot's start along it
+  Scenario once = load_scenario(kScenarios + "switch-once.toml", {});
+  ASSERT_EQ(once.wind.model, WindModel::kSwitching);
+  const SwitchingParams& p = once.wind.get<SwitchingParams>();
+  Scenario keys;  // the file's switching keys are the defaults
+  keys.wind.get<SwitchingParams>() = p;
+  EXPECT_EQ(scenario_to_toml(keys), scenario_to_toml(Scenario{}));
+  EXPECT_EQ(p.count, 1);
+  EXPECT_EQ(p.angle_deg, 45.0);
+  const double angle = p.angle_deg * kPi / 180.0;
+  EXPECT_GT(once.plume.capacity / once.plume.release_rate * std::cos(angle), 14.5 + 2.0);
+  EXPECT_GT(once.arena.y_max, 14.5 * std::tan(angle) + 1.0);
+  EXPECT_LT(once.arena.y_min, -14.5 * std::tan(angle) - 1.0);
+  EXPECT_EQ(once.sim.warmup, 20.0);
+  // nothing else differs from the defaults
+  once.wind = Scenario{}.wind;
+  once.arena.y_min = once.arena.y_max = 0.0;
+  once.plume.capacity = Scenario{}.plume.capacity;
+  once.plume.capacity_auto = true;
+  Scenario base;
+  base.arena.y_min = base.arena.y_max = 0.0;
+  EXPECT_EQ(scenario_to_toml(once), scenario_to_toml(base));
+  // switch-many: switching from the plume's start, the robot released in odor
+  const Scenario many = load_scenario(kScenarios + "switch-many.toml", {});
+  const SwitchingParams& m = many.wind.get<SwitchingParams>();
+  EXPECT_EQ(m.draw, SwitchDraw::kNormal);
+  EXPECT_EQ(m.first, -many.sim.warmup);
+  // the last switch comes after the longest run ends
+  EXPECT_GT(m.first + (m.count - 1) * m.interval * (1.0 - m.jitter), many.supervisor.timeout);
+  // at 60 degrees off x the ring still reaches past the robot's start
+  EXPECT_GE(many.plume.capacity / many.plume.release_rate * std::cos(m.angle_deg * kPi / 180.0),
+            15.0);
+  EXPECT_EQ(many.start.condition, StartCondition::kInOdor);
+}
+
+// the figures the files' comments and docs/model.md section 3.2 give
+TEST(Scenario, TheSwitchOnceCentrelineMovesAsFarAsTheTurnSays) {
+  const Scenario s = load_scenario(kScenarios + "switch-once.toml", {});
+  ProbeOptions o;
+  o.warmup = s.sim.warmup + s.wind.get<SwitchingParams>().first + 25.0;  // the turned plume
+  o.duration = 2.0;
+  o.interval = 1.0;
+  o.centreline_x = {s.source.center.x + 14.5, s.source.center.x + 7.0};
+  o.centreline_slab = 0.5;
+  const ProbeReport r = probe_report(s, {}, o);
+  // where the robot starts the plume now crosses 14.5 m x tan 45 = 14.5 m to the side
+  EXPECT_NEAR(std::abs(r.centrelines[0].mean_y), 14.5, 0.05);
+  EXPECT_NEAR(std::abs(r.centrelines[1].mean_y), 7.0, 0.05);
+}
+
+TEST(Scenario, TheSwitchManyCentrelineWandersAsItsEstimateSays) {
+  const Scenario s = load_scenario(kScenarios + "switch-many.toml", {});
+  const SwitchingParams& m = s.wind.get<SwitchingParams>();
+  // the estimate: the centreline 14.5 m downwind is the sum of the crosswind drifts over the
+  // L s its filaments took to get there, L = 14.5 m / (v E[cos theta]); the angle is constant
+  // for T s at a time, so Var y = v^2 E[sin^2 theta] (L T - T^2 / 3) (docs/model.md 3.2). For
+  // theta normal of std 30 degrees clipped to 60: E[cos] = 0.8802, E[sin^2] = 0.2056: 3.09 m
+  const double v = 1.0, T = m.interval, L = 14.5 / (v * 0.8802);
+  const double estimate = v * std::sqrt(0.2056 * (L * T - T * T / 3.0));
+  EXPECT_NEAR(estimate, 3.09, 0.005);
+  double sum2 = 0.0;
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    ProbeOptions o;
+    o.warmup = s.sim.warmup;
+    o.duration = 1200.0;
+    o.interval = 1.0;
+    o.seed = seed;
+    o.centreline_x = {s.source.center.x + 14.5};
+    o.centreline_slab = 0.5;
+    const CentrelineResult c = probe_report(s, {}, o).centrelines[0];
+    std::printf("[ measured ] seed %d: centreline std %.3f m at 14.5 m downwind\n",
+                static_cast<int>(seed), c.std_y);
+    sum2 += c.std_y * c.std_y;
+  }
+  // 3 x 1200 s hold about 3 x 60 independent centrelines (about 20 s apart, L + T): a standard
+  // deviation to 1 / sqrt(2 x 180) = 5%; 4 of them, 21%
+  const double measured = std::sqrt(sum2 / 3.0);
+  std::printf("[ measured ] centreline std %.3f m (estimate %.3f m)\n", measured, estimate);
+  EXPECT_NEAR(measured, estimate, 0.21 * estimate);
 }
 
 // the meandering wind's keys of 0.4.0 (wind.meander_gain, ...) are still accepted until the

@@ -14,6 +14,7 @@
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
 #include "plumetrace/env/meander_wind.hpp"
+#include "plumetrace/env/switching_wind.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/store.hpp"
 #include "plumetrace/io/exports.hpp"
@@ -456,6 +457,27 @@ TEST(ConfigHash, IsOfTheValuesNotOfTheHelpTexts) {
   EXPECT_NE(scenario_hash(other), scenario_hash(Scenario{}));
 }
 
+// as for the baselines, adding the switching wind changed no stored config or hash of a run in
+// another wind: its table is in a run's config only when it blows there
+TEST(ConfigHash, HoldsTheSwitchingWindsKeysOnlyWhereItBlows) {
+  Scenario laminar, meander, switching;
+  meander.wind.model = WindModel::kMeander;
+  switching.wind.model = WindModel::kSwitching;
+  for (const Scenario* s : {&laminar, &meander}) {
+    EXPECT_EQ(canonical_config(*s).find("\nswitching."), std::string::npos);
+    EXPECT_EQ(scenario_to_toml(*s, ConfigKeys::kOfTheRun).find("[switching]"), std::string::npos);
+    EXPECT_NE(scenario_to_toml(*s, ConfigKeys::kAll).find("[switching]"), std::string::npos);
+  }
+  EXPECT_NE(canonical_config(switching).find("\nswitching.angle_deg=45.0\n"), std::string::npos);
+  // a change of its keys leaves the other winds' runs alone
+  Scenario other = laminar;
+  other.wind.get<SwitchingParams>().angle_deg = 10.0;
+  EXPECT_EQ(scenario_hash(other), scenario_hash(laminar));
+  Scenario turned = switching;
+  turned.wind.get<SwitchingParams>().angle_deg = 10.0;
+  EXPECT_NE(scenario_hash(turned), scenario_hash(switching));
+}
+
 TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
   Scenario a, b;
   b.arena.y_max = 3.0;  // the robot's wall; the constant wind's plume does not see it
@@ -468,6 +490,35 @@ TEST(SharedPlume, AMeanderingWindsPlumeDependsOnTheWholeArena) {
   // the constant wind's plume does not see the meander's keys
   a.wind.model = b.wind.model = WindModel::kConstant;
   EXPECT_EQ(plume_key(a), plume_key(b));
+}
+
+// robots share a plume only where it is the same plume: every key of the switching wind, and the
+// release its switches are timed from, enter the plume's key
+TEST(SharedPlume, ASwitchingWindsPlumeDependsOnEveryKeyOfItAndTheRelease) {
+  Scenario a;
+  a.wind.model = WindModel::kSwitching;
+  const std::string key = plume_key(a);
+  const std::pair<const char*, const char*> changes[] = {
+      {"switching.count", "2"},      {"switching.first", "44"},
+      {"switching.interval", "2.9"}, {"switching.timing", "random"},
+      {"switching.jitter", "0.2"},   {"switching.angle_deg", "40"},
+      {"switching.draw", "uniform"}, {"switching.transition", "1"},
+      {"sim.warmup", "21"},          {"wind.vy", "0.1"}};
+  for (const auto& [name, value] : changes) {
+    Scenario b = a;
+    set_field_text(b, name, value);
+    EXPECT_NE(plume_key(b), key) << name;
+    // the constant wind's plume does not see the switching wind's keys
+    if (std::string(name).rfind("switching.", 0) == 0) {
+      Scenario c, d;
+      set_field_text(d, name, value);
+      EXPECT_EQ(plume_key(c), plume_key(d)) << name;
+    }
+  }
+  // nor the arena's side walls: the switching wind is the same over any region
+  Scenario wide = a;
+  wide.arena.y_max = 16.0;
+  EXPECT_EQ(plume_key(wide), key);
 }
 
 TEST(Campaign, SharedAndSeparatePlumesGiveIdenticalRows) {

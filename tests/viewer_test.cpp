@@ -958,6 +958,42 @@ std::string svg_element(const std::string& svg, const std::string& id) {
   return svg.substr(start, svg.find("</" + tag + ">", a) + tag.size() + 3 - start);
 }
 
+// a wind that turns (scenarios/switch-once.toml, the switch 2.5 s after release): the page sends
+// the field once, then again at the first snapshot after the switch, turned by 45 degrees at
+// every node of the grid
+TEST(Viewer, DrawsTheSwitchingWindTurnedFromItsSwitchOn) {
+  const RecordedRun run = recorded_file_run(
+      "switch-once.toml", {{"switching.first", 2.5}, {"supervisor.timeout", 6.0}}, 1.0);
+  const json d = page_data(viewer_html(run, {}));
+  const json& snaps = d["snapshots"];
+  const json& field = snaps["wind_field"];
+  ASSERT_GE(snaps["time"].size(), 5u);
+  std::vector<double> sent;
+  for (std::size_t i = 0; i < snaps["time"].size(); ++i) {
+    if (field["u"][i].is_null()) continue;
+    const double t = snaps["time"][i].get<double>();
+    sent.push_back(t);
+    ASSERT_EQ(field["u"][i].size(), run.trace.wind_grid.size());
+    for (std::size_t k = 0; k < field["u"][i].size(); ++k) {
+      const double u = field["u"][i][k].get<double>(), v = field["v"][i][k].get<double>();
+      if (t < 2.5) {
+        ASSERT_EQ(u, 1.0);
+        ASSERT_EQ(v, 0.0);
+      } else {
+        ASSERT_NEAR(std::abs(std::atan2(v, u)), kPi / 4, 2e-3) << "t " << t;  // rounded to 1e-3
+      }
+    }
+  }
+  ASSERT_EQ(sent.size(), 2u);
+  EXPECT_EQ(sent[0], 0.0);
+  EXPECT_GT(sent[1], 2.5);
+  EXPECT_LT(sent[1], 2.5 + 1.0);
+  // and the robot's true wind turned with it
+  EXPECT_NEAR(std::abs(std::atan2(run.trace.agents[0].steps.back().true_wind.y,
+                                  run.trace.agents[0].steps.back().true_wind.x)),
+              kPi / 4, 1e-12);
+}
+
 double svg_number(const std::string& element, const std::string& attribute) {
   const auto a = element.find(" " + attribute + "=\"");
   return a == std::string::npos ? NAN : std::stod(element.substr(a + attribute.size() + 3));

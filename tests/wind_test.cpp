@@ -578,15 +578,14 @@ TEST(MeanderWind, TheWindDrawsOnlyFromItsOwnStream) {
   s.wind.get<MeanderParams>().gain = 0.0;
   const auto laminar = plume_after(std::make_unique<ConstantWind>(s.wind.velocity), 700);
   for (std::uint64_t seed : {1u, 2u, 999u}) {
-    EXPECT_TRUE(plume_after(make_wind_field(s.wind, wind_region(s.arena), Rng(seed)), 700) ==
-                laminar)
+    EXPECT_TRUE(plume_after(make_wind_field(s.wind, wind_context(s), Rng(seed)), 700) == laminar)
         << seed;
   }
   // with a gain the filaments move with the wind, but the plume's own draws (the release
   // positions, appended last) are the same whatever the wind's seed
   s.wind.get<MeanderParams>().gain = 0.3;
-  const auto first = plume_after(make_wind_field(s.wind, wind_region(s.arena), Rng(1)), 100);
-  const auto second = plume_after(make_wind_field(s.wind, wind_region(s.arena), Rng(2)), 100);
+  const auto first = plume_after(make_wind_field(s.wind, wind_context(s), Rng(1)), 100);
+  const auto second = plume_after(make_wind_field(s.wind, wind_context(s), Rng(2)), 100);
   ASSERT_EQ(first.size(), second.size());
   const std::size_t n = first.size() / 4;  // filaments; the last 4 were released in step 100
   EXPECT_NE(first[0], second[0]);          // the oldest moved in different winds
@@ -790,20 +789,23 @@ TEST(MeanderWind, BadKeysAreRefusedNamingThem) {
 // the wind fields' registrations say what scenario, sweep and trace code ask of them (issue 24)
 TEST(WindRegistry, EachFieldSaysThroughItsHooksWhatItIs) {
   const WindRegion arena{0.0, 16.0, -2.0, 2.0}, wider{0.0, 16.0, -3.0, 3.0};
-  WindParams wind;  // the constant wind: steady, the same over any region, never refused
+  WindParams wind;
+  const WindContext context{
+      wind.velocity, arena,
+      0.032};  // the constant wind: steady, the same over any region, never refused
   EXPECT_TRUE(wind_is_steady(wind));
   EXPECT_EQ(wind_identity(wind, arena), "");
   MeanderParams& m = wind.get<MeanderParams>();
   m.gain = 10.0;
   m.bandwidth = 100.0;
-  EXPECT_NO_THROW(check_wind_field(wind, arena, 0.032));
+  EXPECT_NO_THROW(check_wind_field(wind, context));
   // the meander: steady at gain 0 alone, its grid's region part of its identity, its
   // stability checked
   wind.model = WindModel::kMeander;
   EXPECT_FALSE(wind_is_steady(wind));
-  EXPECT_THROW(check_wind_field(wind, arena, 0.032), ConfigError);
+  EXPECT_THROW(check_wind_field(wind, context), ConfigError);
   m = MeanderParams{};
-  EXPECT_NO_THROW(check_wind_field(wind, arena, 0.032));
+  EXPECT_NO_THROW(check_wind_field(wind, context));
   EXPECT_NE(wind_identity(wind, arena), wind_identity(wind, wider));
   m.gain = 0.0;
   EXPECT_TRUE(wind_is_steady(wind));
@@ -814,7 +816,8 @@ TEST(WindRegistry, EachFieldSaysThroughItsHooksWhatItIs) {
 TEST(WindRegistry, EveryFactoryThrowsOnAModelItDoesNotKnow) {
   WindParams wind;
   wind.model = static_cast<WindModel>(wind_field_registry().size());
-  EXPECT_THROW(make_wind_field(wind, {0.0, 16.0, -2.0, 2.0}, Rng(1)), std::invalid_argument);
+  EXPECT_THROW(make_wind_field(wind, {wind.velocity, {0.0, 16.0, -2.0, 2.0}, 0.032}, Rng(1)),
+               std::invalid_argument);
   EXPECT_THROW(wind_is_steady(wind), std::invalid_argument);
   EXPECT_THROW(make_odor_field("no-such-odor", PlumeParams{}, SourceParams{}, 16.0, 1),
                std::invalid_argument);

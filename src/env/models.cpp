@@ -5,6 +5,7 @@
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/env/odor.hpp"
+#include "plumetrace/env/switching_wind.hpp"
 #include "plumetrace/env/wind.hpp"
 
 namespace plumetrace {
@@ -38,6 +39,8 @@ WindRegistry& wind_field_registry() {
     r.add<ConstantWind, ConstantWindParams>("constant",
                                             wind_hooks<ConstantWind, ConstantWindParams>());
     r.add<MeanderWind, MeanderParams>("meander", wind_hooks<MeanderWind, MeanderParams>());
+    r.add<SwitchingWind, SwitchingParams>("switching",
+                                          wind_hooks<SwitchingWind, SwitchingParams>());
     return r;
   }();
   return registry;
@@ -78,15 +81,15 @@ void WindParams::read_fields(FieldReader& v) const {
   params.read_fields(registry, v);
 }
 
-std::unique_ptr<WindField> make_wind_field(const WindParams& params, const WindRegion& region,
+std::unique_ptr<WindField> make_wind_field(const WindParams& params, const WindContext& context,
                                            Rng rng) {
   const auto [entry, own] = chosen(params);
-  return entry.make(own, params.velocity, region, rng);
+  return entry.make(own, context, rng);
 }
 
-void check_wind_field(const WindParams& params, const WindRegion& region, double dt) {
+void check_wind_field(const WindParams& params, const WindContext& context) {
   const auto [entry, own] = chosen(params);
-  if (entry.hooks.check) entry.hooks.check(own, {params.velocity, region, dt});
+  if (entry.hooks.check) entry.hooks.check(own, context);
 }
 
 bool wind_is_steady(const WindParams& params) {

@@ -769,7 +769,7 @@ void validate(const Scenario& scenario) {
                   " m/s and the arena's length: raise wind.vx or set sim.warmup)"
             : "");
   steps("supervisor.timeout", scenario.supervisor.timeout, "");
-  check_wind_field(scenario.wind, wind_region(a), dt);
+  check_wind_field(scenario.wind, wind_context(scenario));
   check_controller(scenario.controller);
   const double per_step = scenario.plume.release_rate * dt;
   if (per_step > kMaxReleasePerStep) {
@@ -825,6 +825,12 @@ Scenario build_scenario(const std::vector<Setting>& settings) {
   derive_scenario(scenario);
   validate(scenario);
   return scenario;
+}
+
+WindContext wind_context(const Scenario& scenario) {
+  const double dt = scenario.sim.dt;
+  const auto warmup_steps = static_cast<double>(std::llround(scenario.sim.warmup / dt));
+  return {scenario.wind.velocity, wind_region(scenario.arena), dt, warmup_steps * dt};
 }
 
 double crossing_ratio(const Scenario& scenario) {
@@ -987,6 +993,14 @@ void for_each_value_of(const Scenario& scenario, ConfigKeys keys,
     if (std::find(running.begin(), running.end(), registry[i].name) == running.end()) {
       unused_tables.push_back(registry[i].table);
     }
+  }
+  // why: likewise for the wind fields after those of 0.6.0 (constant, meander; the switching
+  // wind and later ones): a field's table is in a run's config only when it blows there, so
+  // that adding a field changes no stored config of a run in another wind
+  const WindRegistry& winds = wind_field_registry();
+  const std::size_t always_winds = static_cast<std::size_t>(WindModel::kMeander) + 1;
+  for (std::size_t i = always_winds; keys == ConfigKeys::kOfTheRun && i < winds.size(); ++i) {
+    if (i != static_cast<std::size_t>(scenario.wind.model)) unused_tables.push_back(winds[i].table);
   }
   for_each_value(scenario, [&](const FieldValue& v) {
     if (std::find(unused_tables.begin(), unused_tables.end(), v.table) == unused_tables.end()) {

@@ -299,7 +299,7 @@ std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std:
 
 Environment make_environment(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial) {
   Environment env;
-  env.wind = make_wind_field(scenario.wind, wind_region(scenario.arena),
+  env.wind = make_wind_field(scenario.wind, wind_context(scenario),
                              Rng(derive_seed(seed, trial, Stream::kWind)));
   const auto model = static_cast<std::size_t>(scenario.plume.model);  // plume.model
   env.odor = make_odor_field(odor_field_registry()[model].name, scenario.plume, scenario.source,

@@ -110,6 +110,9 @@ class MeanderWind final : public WindField {
   /// first state from the stationary law; the inside starts as the bilinear interpolation of the
   /// four corners.
   MeanderWind(const MeanderParams& params, const Vec3& mean, const WindRegion& region, Rng rng);
+  /// Builds the field from a scenario's wind: around context.mean over context.region.
+  MeanderWind(const MeanderParams& params, const WindContext& context, Rng rng)
+      : MeanderWind(params, context.mean, context.region, rng) {}
 
   /// Advances the corner noise exactly, sets the edges, then updates the inside in
   /// `substeps()` equal substeps of Farrell's scheme (forward Euler, centred differences).

@@ -14,7 +14,7 @@ namespace plumetrace {
 
 /// Which wind field a scenario uses: its place in wind_field_registry(). The built-ins are named
 /// here, in the order they are registered.
-enum class WindModel { kConstant, kMeander };
+enum class WindModel { kConstant, kMeander, kSwitching };
 
 /// The names of the registered wind fields, in registry order: the choices of wind.model.
 Choices wind_model_names();
@@ -28,11 +28,14 @@ struct WindRegion {
   double y_max;  ///< left-hand edge (m)
 };
 
-/// What a wind field's params are checked against besides their own ranges (WindHooks::check).
+/// Where and when a wind field runs: what it is built from and its params are checked against
+/// besides their own ranges (WindHooks::check). The sim layer makes it from a scenario
+/// (wind_context, sim/scenario.hpp).
 struct WindContext {
-  Vec3 mean;          ///< the mean wind: wind.vx, wind.vy, wind.vz (m/s)
-  WindRegion region;  ///< the region the field covers: the arena (m)
-  double dt;          ///< the time step it is advanced by: sim.dt (s)
+  Vec3 mean;             ///< the mean wind: wind.vx, wind.vy, wind.vz (m/s)
+  WindRegion region;     ///< the region the field covers: the arena (m)
+  double dt;             ///< the time step it is advanced by: sim.dt (s)
+  double release = 0.0;  ///< when the robots are released, on the field's clock: sim.warmup (s)
 };
 
 /// What a wind field's registration carries besides its factory (Registry::Entry::hooks), so
@@ -97,8 +100,8 @@ class ConstantWind final : public WindField {
   explicit ConstantWind(const Vec3& velocity) : velocity_(velocity) {}
   /// Builds the field from a scenario's wind: the mean wind (m/s); a constant wind never draws
   /// from its stream.
-  ConstantWind(const ConstantWindParams&, const Vec3& mean, const WindRegion&, Rng)
-      : velocity_(mean) {}
+  ConstantWind(const ConstantWindParams&, const WindContext& context, Rng)
+      : velocity_(context.mean) {}
   /// Nothing changes.
   void step(double) override {}
   Vec3 velocity(const Vec3&) const override { return velocity_; }
@@ -134,9 +137,10 @@ WindHooks wind_hooks() {
   return hooks;
 }
 
-/// The wind fields, chosen by wind.model: each made from its own params, the mean wind (m/s),
-/// the region it covers (the arena) and its own random stream (Stream::kWind).
-using WindRegistry = Registry<WindField, const Vec3&, const WindRegion&, Rng>;
+/// The wind fields, chosen by wind.model: each made from its own params, its context (the mean
+/// wind, the region it covers, its time step and the robots' release) and its own random stream
+/// (Stream::kWind).
+using WindRegistry = Registry<WindField, const WindContext&, Rng>;
 
 /// The registered wind fields (src/env/models.cpp: one line each).
 WindRegistry& wind_field_registry();
@@ -170,15 +174,16 @@ struct WindParams {
   void read_fields(FieldReader& v) const;
 };
 
-/// Builds the wind field a scenario asks for over `region` (the arena); `rng` is its own random
-/// stream (Stream::kWind), which a constant wind never draws from. Throws
-/// std::invalid_argument for a model not registered.
-std::unique_ptr<WindField> make_wind_field(const WindParams& params, const WindRegion& region,
+/// Builds the wind field a scenario asks for in `context` (whose mean is params.velocity; the
+/// sim layer's wind_context makes both from one scenario); `rng` is its own random stream
+/// (Stream::kWind), which a constant wind never draws from. Throws std::invalid_argument for a
+/// model not registered.
+std::unique_ptr<WindField> make_wind_field(const WindParams& params, const WindContext& context,
                                            Rng rng);
 
-/// Refuses a wind that its field cannot run over `region` with time step `dt` (s): the field's
-/// check hook, where it has one. Throws ConfigError naming the keys.
-void check_wind_field(const WindParams& params, const WindRegion& region, double dt);
+/// Refuses a wind that its field cannot run in `context` (whose mean is params.velocity): the
+/// field's check hook, where it has one. Throws ConfigError naming the keys.
+void check_wind_field(const WindParams& params, const WindContext& context);
 
 /// True when the chosen field is the mean wind, exactly, at every point and always (its steady
 /// hook).

@@ -252,6 +252,11 @@ struct Scenario {
   void read_fields(FieldReader& v) const;
 };
 
+/// The wind field's context in a run of `scenario`: the mean wind (wind.vx, wind.vy, wind.vz),
+/// the arena, sim.dt, and the robots' release after the warm-up's whole steps
+/// (llround(sim.warmup / sim.dt) * sim.dt, as warm_up takes them).
+WindContext wind_context(const Scenario& scenario);
+
 /// The most steps of sim.dt a warm-up or a run may take: 1e7, 270 times the paper's run (37500
 /// steps), about a minute of the default plume. why: a tiny sim.dt would otherwise run for hours
 /// without a word (1.3e-6 s: two hours; issue 13, F23).
@@ -381,7 +386,8 @@ void for_each_value(const Scenario& scenario, const std::function<void(const Fie
 /// Which keys scenario_to_toml writes.
 enum class ConfigKeys {
   kAll,       ///< every key, the tables of every registered controller included
-  kOfTheRun,  ///< a controller registered outside the library only when it is the one that runs
+  kOfTheRun,  ///< a controller after the paper's three, or a wind field after the meander, only
+              ///< when it is the one that runs
 };
 
 /// The fully resolved scenario as TOML that reads back to the same scenario: its keys, in the

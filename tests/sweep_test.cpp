@@ -371,6 +371,27 @@ TEST(Campaign, OneAndTwoThreadsGiveIdenticalRowsInTheMeanderingWind) {
   EXPECT_TRUE(differ);
 }
 
+TEST(Campaign, OneAndTwoThreadsGiveIdenticalRowsInTheSwitchingWind) {
+  std::string text = kQuickSweep;
+  const std::string set = "[set]\n";
+  text.insert(text.find(set) + set.size(),
+              "wind.model = \"switching\"\nswitching.count = 100\nswitching.first = 2.0\n"
+              "switching.draw = \"normal\"\nswitching.angle_deg = 60.0\n");
+  const std::vector<ExpandedSweep> sweeps = {expand_sweep(read_sweep_file(write_sweep(text)), {})};
+  ASSERT_EQ(sweeps[0].points[0].scenario.wind.model, WindModel::kSwitching);
+  const auto one = run_fresh(sweeps, 1);
+  expect_same_rows(one, run_fresh(sweeps, 2));
+  expect_same_rows(one, run_fresh(sweeps, 2, false));  // and shared plumes equal separate ones
+  // the switches changed the runs
+  const auto laminar = run_fresh(quick(), 1);
+  ASSERT_EQ(laminar.size(), one.size());
+  bool differ = false;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    differ = differ || one[i].result.steps != laminar[i].result.steps;
+  }
+  EXPECT_TRUE(differ);
+}
+
 TEST(SharedPlume, AgentsOnOnePlumeEqualSeparateRunsBitForBit) {
   // robots as different as can be, on the paper's plume: algorithms, noise, radii, starts
   std::vector<Scenario> scenarios(6);

@@ -40,5 +40,5 @@ for f in out/plumetrace-core/leaderboard.html out/core-check/leaderboard.json; d
   [[ -s $f ]] || { echo "FAIL: the commands wrote no $f"; exit 1; }
 done
 grep -q py-surge-cast out/plumetrace-core/runs.csv || { echo "FAIL: no py-surge-cast runs"; exit 1; }
-grep -q zigzag out/plumetrace-core/runs.csv || { echo "FAIL: no zigzag runs"; exit 1; }
+grep -q zigzag out/zigzag/runs.csv || { echo "FAIL: no zigzag runs"; exit 1; }
 echo "readme_benchmark: $(grep -c benchmark commands.sh) commands OK"

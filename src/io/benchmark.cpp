@@ -84,6 +84,23 @@ std::string task_values(const Scenario& scenario, const std::vector<Setting>& gi
   return text;
 }
 
+// why: a suite's version names its tasks; a task changed without a new version would make
+// "version 1" mean two things (issue 26, item 3)
+void check_recorded_digest(SuiteFile suite) {
+  const std::string recorded = suite.digest;
+  suite.digest.clear();
+  const std::string digest = plan_benchmark(suite, {}).digest;
+  if (digest == recorded) return;
+  throw ConfigError(suite.file + ": digest: the tasks of " + suite.name + " version " +
+                    suite.version + " at seed " + std::to_string(suite.seed) + " and " +
+                    std::to_string(suite.runs) + " runs give " + digest + ", not the " +
+                    recorded +
+                    " recorded: a task, the seed or the runs changed, or this plumetrace "
+                    "resolves a task's values differently; give the suite a new version and "
+                    "record digest = \"" +
+                    digest + "\"");
+}
+
 }  // namespace
 
 BenchmarkPlan plan_benchmark(const SuiteFile& suite, const BenchmarkChoice& choice) {
@@ -120,6 +137,7 @@ BenchmarkPlan plan_benchmark(const SuiteFile& suite, const BenchmarkChoice& choi
     all += "task=" + task.name + " " + plan.task_digests.back() + '\n';
   }
   plan.digest = hash_text(all);
+  if (!suite.digest.empty()) check_recorded_digest(suite);
   return plan;
 }
 

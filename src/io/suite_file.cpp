@@ -118,6 +118,8 @@ SuiteFile read_suite_file(const std::string& path) {
         in.fail("runs: must be an integer >= 1 and <= " + std::to_string(kMaxCampaignRuns));
       }
       suite.runs = static_cast<int>(runs);
+    } else if (key == "digest") {
+      suite.digest = in.text(node, key);
     } else if (key == "controllers") {
       suite.controllers = in.names(node, key);
       has_controllers = true;
@@ -133,7 +135,7 @@ SuiteFile read_suite_file(const std::string& path) {
       }
     } else {
       in.fail("unknown or mistyped key '" + key +
-              "' (keys: name, version, title, seed, runs, controllers, null_models, [[task]])");
+              "' (keys: name, version, title, seed, runs, controllers, null_models, digest, [[task]])");
     }
   }
   if (suite.name.empty()) in.fail("name: missing");

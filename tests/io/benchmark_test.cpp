@@ -212,6 +212,23 @@ TEST(BenchmarkManifest, SaysWhatRanAndWhereEachControllerCameFrom) {
   EXPECT_EQ(m["controllers"][2]["file"], "mine.py");
 }
 
+TEST(BenchmarkDigest, ARecordedDigestRefusesATaskChangedWithoutANewVersion) {
+  const std::string digest = plan_of(suite_text()).digest;
+  EXPECT_EQ(plan_of(suite_text("digest = \"" + digest + "\"\n")).digest, digest);
+  // a run with other controllers, tasks or runs checks the suite as recorded, not the choice
+  BenchmarkChoice choice;
+  choice.tasks = {"far"};
+  choice.runs = 9;
+  EXPECT_NO_THROW(plan_of(suite_text("digest = \"" + digest + "\"\n"), choice));
+  std::string changed = suite_text("digest = \"" + digest + "\"\n");
+  changed.replace(changed.find("robot.start_x = 3.0"), 19, "robot.start_x = 3.5");
+  const std::string message = refusal(changed);
+  EXPECT_NE(message.find("digest: the tasks of mini version 1 at seed 7 and 3 runs give "),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("give the suite a new version"), std::string::npos);
+}
+
 // the suite that ships: every task has its reasons, and plans with every built-in controller
 TEST(ShippedSuite, EveryTaskSaysWhyAndRunsWithEveryBuiltInController) {
   const SuiteFile suite =
@@ -229,6 +246,9 @@ TEST(ShippedSuite, EveryTaskSaysWhyAndRunsWithEveryBuiltInController) {
   }
   const BenchmarkPlan plan = plan_benchmark(suite, {});
   EXPECT_EQ(plan.sweeps.size(), suite.tasks.size());
+  // version 1 as it was run and reported (docs/benchmark.md): planning checked it above
+  EXPECT_EQ(suite.version, "1");
+  EXPECT_EQ(plan.digest, "cbefbcab5737e285");
 }
 
 }  // namespace

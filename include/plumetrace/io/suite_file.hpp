@@ -32,10 +32,14 @@ struct SuiteFile {
   std::vector<std::string> controllers;  ///< the controllers run by default, in order
   std::vector<std::string> null_models;  ///< those of `controllers` that are null models
   std::vector<SuiteTask> tasks;          ///< in file order
+  /// The digest the suite's tasks must give at its own seed and runs (BenchmarkPlan::digest),
+  /// when the file records one (`digest = "..."`): planning refuses a suite whose tasks give
+  /// another, so that a changed task cannot keep its version. Empty: not checked.
+  std::string digest;
 };
 
 /// Reads a suite file: `name`, `version`, `title`, `seed`, `runs`, `controllers`,
-/// `null_models` and one [[task]] table per task (`name`, `title`, `why`, `source`,
+/// `null_models`, optionally `digest`, and one [[task]] table per task (`name`, `title`, `why`, `source`,
 /// `scenario`, [task.set]), and every task's scenario file. Throws ConfigError naming the file
 /// and the key: a missing or mistyped key, an unknown key, a task without a name, two tasks of
 /// one name, a null model that is not among the controllers, a control character in a text.

@@ -108,7 +108,7 @@ int BenchmarkCommand::finish(const SweepPlan& plan, const Store& store,
                              const CampaignResult& result, const std::string& where) const {
   if (plan.shard.count > 1) return SweepCommand::finish(plan, store, result, where);
   make_output_folder(plan.out, "--out");
-  // the manifest first: the exports and the leaderboard read it
+  // the manifest first: the leaderboard reads it, and it says what the store holds
   const BenchmarkPlan bench = plan_benchmark(read_suite_file(file), choice());
   write_text_file(plan.out + "/benchmark.json", benchmark_manifest(bench));
   if (const int rc = SweepCommand::finish(plan, store, result, where)) return rc;

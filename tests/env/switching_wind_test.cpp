@@ -22,6 +22,7 @@
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/trace.hpp"
 #include "plumetrace/sim/world.hpp"
+#include "support/shared_runs.hpp"
 
 namespace plumetrace {
 namespace {
@@ -458,18 +459,7 @@ TEST(SwitchingWind, AgentsSharingTheSwitchingPlumeEqualSeparateRuns) {
     scenarios.push_back(s);
   }
   scenarios[1].wind_sensor.sigma_a = 0.4;
-  std::vector<const Scenario*> group;
-  for (const auto& s : scenarios) group.push_back(&s);
-  World world(group, 20080101, 1);
-  while (!world.done()) world.step();
-  const std::vector<RunResult> together = world.results();
-  for (std::size_t i = 0; i < scenarios.size(); ++i) {
-    const RunResult alone = run_once(scenarios[i], 20080101, 1);
-    EXPECT_EQ(together[i].steps, alone.steps) << i;
-    EXPECT_EQ(bits(together[i].d_t), bits(alone.d_t)) << i;
-    EXPECT_EQ(bits(together[i].time), bits(alone.time)) << i;
-    EXPECT_EQ(together[i].outcome, alone.outcome) << i;
-  }
+  testing::expect_shared_plume_equals_runs_alone(scenarios, 20080101, 1);
 }
 
 // --- keys ----------------------------------------------------------------------------------------

@@ -130,6 +130,19 @@ class _Check:
         return v
 
 
+def _named_entries(c: _Check, entries: list, where: str, what: str):
+    """(index, entry) of a list of objects with distinct names, checked as it is iterated."""
+    names = set()
+    for i, entry in enumerate(entries):
+        if not isinstance(entry, dict):
+            c.fail(f"{where}[{i}]", "expected an object")
+        name = c.get(entry, "name", f"{where}[{i}]", str)
+        if name in names:
+            c.fail(f"{where}[{i}].name", f"{what} '{name}' is listed twice")
+        names.add(name)
+        yield i, entry
+
+
 def check_manifest(manifest, path: Path) -> dict:
     """The manifest, checked as far as the leaderboard reads it; BenchmarkError names the file
     and the key of anything missing, mistyped or repeated."""
@@ -151,15 +164,8 @@ def check_manifest(manifest, path: Path) -> dict:
     tasks = c.get(suite, "tasks", "suite", list)
     if not tasks:
         c.fail("suite.tasks", "no task")
-    names = set()
-    for i, t in enumerate(tasks):
+    for i, t in _named_entries(c, tasks, "suite.tasks", "task"):
         where = f"suite.tasks[{i}]"
-        if not isinstance(t, dict):
-            c.fail(where, "expected an object")
-        name = c.get(t, "name", where, str)
-        if name in names:
-            c.fail(f"{where}.name", f"task '{name}' is listed twice")
-        names.add(name)
         c.get(t, "digest", where, str)
         for key in ("title", "why", "source"):
             c.get(t, key, where, str, optional=True)
@@ -171,15 +177,8 @@ def check_manifest(manifest, path: Path) -> dict:
     controllers = c.get(manifest, "controllers", "", list)
     if not controllers:
         c.fail("controllers", "no controller")
-    names = set()
-    for i, k in enumerate(controllers):
+    for i, k in _named_entries(c, controllers, "controllers", "controller"):
         where = f"controllers[{i}]"
-        if not isinstance(k, dict):
-            c.fail(where, "expected an object")
-        name = c.get(k, "name", where, str)
-        if name in names:
-            c.fail(f"{where}.name", f"controller '{name}' is listed twice")
-        names.add(name)
         c.get(k, "origin", where, str, optional=True)
         c.get(k, "file", where, str, optional=True)
         c.get(k, "null_model", where, bool)

@@ -1530,6 +1530,11 @@ void bind_evidence(py::module_& m) {
 
 }  // namespace
 
+// python/vector_bindings.cpp
+void bind_vector(py::module_& m,
+                 const std::function<pt::Scenario(const std::optional<std::string>&,
+                                                  const py::list&)>& scenario_of);
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "plumetrace C++ core (use the plumetrace package, not this module)";
   m.attr("__version__") = std::string(pt::version());
@@ -1670,6 +1675,8 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("values"), "lower quartile, median, upper quartile (NaN skipped; type 7)");
   bind_evidence(m);
+
+  bind_vector(m, scenario_of);
 
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")

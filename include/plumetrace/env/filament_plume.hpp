@@ -71,6 +71,9 @@ class FilamentPlume final : public OdorField {
   // skips the blocks wholly beyond the cut-off (filaments sit roughly in release order, so
   // along x)
   std::vector<double> bounds_;
+  // the least and greatest 1 / w of each block, so that a threshold test can bound what the
+  // blocks not yet summed can add (FilamentPlume::sum_kernels)
+  std::vector<double> h_range_;
 };
 
 }  // namespace plumetrace

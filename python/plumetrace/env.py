@@ -275,14 +275,16 @@ class PlumeEnv(Env):
     Discrete(n) action); `wind_every_step`: take a wind sample with every observation;
     `reward_fn`: f(info) -> float, called every simulation step (default: 1.0 on success);
     `observation`: "binary" (value 0 is the odor, 0 or 1) or "concentration" (value 0 is the
-    odor sensor's reading, a float >= 0).
+    odor sensor's reading, a float >= 0); `normalized_actions`: a Box action in [-1, 1] (clipped
+    there) that drives along heading pi a, as RL libraries expect and as
+    plumetrace.vector.VectorPlumeEnv does.
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 1.0 / (0.032 * 8)}
 
     def __init__(self, scenario=None, decision_interval=8, render_mode=None,
                  discrete_headings=None, wind_every_step=True, reward_fn=None, overrides=None,
-                 observation="binary", **keys):
+                 observation="binary", normalized_actions=False, **keys):
         if "seed" in keys:
             raise TypeError("PlumeEnv takes no seed: reset(seed=...) seeds an episode")
         path, settings = _settings(scenario, None, overrides, keys)
@@ -308,10 +310,17 @@ class PlumeEnv(Env):
 
         self.observation_space = Box(*_observation_bounds(self.config, observation),
                                      dtype=np.float32)
+        if not isinstance(normalized_actions, bool):
+            raise TypeError(f"normalized_actions must be True or False, got "
+                            f"{_shown(normalized_actions)}")
+        if normalized_actions and discrete_headings is not None:
+            raise ValueError("normalized_actions goes with a Box action, not discrete_headings")
+        self.normalized_actions = normalized_actions
         if discrete_headings is None:
             self.discrete_headings = None
-            self.action_space = Box(np.array([-math.pi], np.float32),
-                                    np.array([math.pi], np.float32), dtype=np.float32)
+            bound = 1.0 if normalized_actions else math.pi
+            self.action_space = Box(np.array([-bound], np.float32),
+                                    np.array([bound], np.float32), dtype=np.float32)
         else:
             self.discrete_headings = _whole("discrete_headings", discrete_headings, 1, 2**31 - 1)
             self.action_space = Discrete(self.discrete_headings)
@@ -436,7 +445,11 @@ class PlumeEnv(Env):
             return action
         n = self.discrete_headings
         if n is None:
-            return _core.Command.go(_action_number(action, None))
+            heading = _action_number(action, None)
+            if self.normalized_actions:
+                # why: the vector environment's mapping (docs/vector.md), so one policy drives both
+                heading = math.pi * min(1.0, max(-1.0, heading))
+            return _core.Command.go(heading)
         return _core.Command.go(_core.wrap_angle(2.0 * math.pi * _action_number(action, n) / n))
 
 

@@ -36,22 +36,21 @@ from .controllers import _is_bool, _shown
 from .env import GYMNASIUM, Box, Discrete, _np_random
 
 if GYMNASIUM:
-    import gymnasium as _gym
+    from gymnasium.spaces import MultiDiscrete
+    from gymnasium.vector import VectorEnv as _VectorBase
 
-    _VectorBase = _gym.vector.VectorEnv
     try:
         from gymnasium.vector import AutoresetMode as _AutoresetMode
 
         _NEXT_STEP = _AutoresetMode.NEXT_STEP
     except ImportError:  # gymnasium 1.0 knew only the next-step mode
         _NEXT_STEP = "NextStep"
-    MultiDiscrete = _gym.spaces.MultiDiscrete
 else:
     _VectorBase = object
     _NEXT_STEP = "NextStep"
     MultiDiscrete = None  # defined below
 
-__all__ = ["OBSERVED", "OUTCOMES", "MAX_ENVS", "VectorPlumeEnv"]
+__all__ = ["GYMNASIUM", "OBSERVED", "OUTCOMES", "MAX_ENVS", "VectorPlumeEnv"]
 
 OBSERVED = ("odor", "odor_fraction", "wind", "odometry", "time")
 """The values an observation may hold, in the order a frame holds them (docs/vector.md)."""

@@ -1,6 +1,7 @@
 #include "plumetrace/env/filament_plume.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -369,6 +370,28 @@ bool FilamentPlume::reaches(const Vec3& u, double threshold) const {
 
 namespace {
 
+// A vector of trivial values that keeps its first N on the stack.
+template <class T, std::size_t N>
+class SmallVector {
+ public:
+  void push_back(T v) {
+    if (size_ < N) {
+      fixed_[size_] = v;
+    } else {
+      if (size_ == N) spill_.assign(fixed_.begin(), fixed_.end());
+      spill_.push_back(v);
+    }
+    ++size_;
+  }
+  std::size_t size() const { return size_; }
+  T& operator[](std::size_t i) { return size_ <= N ? fixed_[i] : spill_[i]; }
+
+ private:
+  std::array<T, N> fixed_;
+  std::vector<T> spill_;
+  std::size_t size_ = 0;
+};
+
 // The most one filament with 1 / w in [h_lo, h_hi] can add at squared horizontal distance
 // e2 or more from the query: scale h^3 exp(-e2 h^2) (Gaussian) or scale h^3 exp(-sqrt(e2) h^2)
 // (printed) at the h that maximises it in the range (h^2 = 3 / (2 e2), or 3 / (2 e)).
@@ -402,33 +425,37 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   const double scale = kernel_scale(params_);
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  // what each block can add at most (0: beyond the cut-off), and the sums of those from each
-  // block on, added from the last so that each is the rounded sum of its own terms
-  thread_local std::vector<double> left;
+  // the blocks within the cut-off, in index order, and for a threshold test what each can add
+  // at most; `left[c]` sums those from candidate c on, added from the last so that each is the
+  // rounded sum of its own terms
+  // why: on the stack for the usual few candidates (a query meets the blocks within the
+  // cut-off, about 3 of the default 25), on the heap past that
+  constexpr std::size_t kOnStack = 32;
+  SmallVector<std::size_t, kOnStack> near;
+  SmallVector<double, kOnStack + 1> left;
   const bool test = std::isfinite(stop_at);
-  if (test) {
-    left.assign(blocks + 1, 0.0);
-    for (std::size_t b = blocks; b-- > 0;) {
-      const double* box = bounds_.data() + 4 * b;
-      const double ex = std::max({box[0] - u.x, 0.0, u.x - box[1]});
-      const double ey = std::max({box[2] - u.y, 0.0, u.y - box[3]});
-      const double e2 = ex * ex + ey * ey;
-      const double m = static_cast<double>(std::min(kBlock, n - b * kBlock));
-      const double most =
-          e2 >= cut2 ? 0.0
-                     : m * kernel_bound(params_.kernel, scale, e2, h_range_[2 * b],
-                                        h_range_[2 * b + 1]);
-      left[b] = left[b + 1] + most;
-    }
-    if (left[0] * kMargin < stop_at) return left[0];
-  }
-  for (std::size_t start = 0; start < n; start += kBlock) {
+  for (std::size_t b = 0; b < blocks; ++b) {
     // why: rounding is monotonic, so no filament of a block is nearer than its box in (x, y);
     // a box at or beyond the cut-off holds only filaments that add exactly 0
-    const double* box = bounds_.data() + 4 * (start / kBlock);
+    const double* box = bounds_.data() + 4 * b;
     const double ex = std::max({box[0] - u.x, 0.0, u.x - box[1]});
     const double ey = std::max({box[2] - u.y, 0.0, u.y - box[3]});
-    if (ex * ex + ey * ey >= cut2) continue;
+    const double e2 = ex * ex + ey * ey;
+    if (e2 >= cut2) continue;
+    near.push_back(b);
+    if (test) {
+      const double m = static_cast<double>(std::min(kBlock, n - b * kBlock));
+      left.push_back(m *
+                     kernel_bound(params_.kernel, scale, e2, h_range_[2 * b], h_range_[2 * b + 1]));
+    }
+  }
+  if (test) {
+    left.push_back(0.0);
+    for (std::size_t c = near.size(); c-- > 0;) left[c] += left[c + 1];
+    if (left[0] * kMargin < stop_at) return left[0];
+  }
+  for (std::size_t c = 0; c < near.size(); ++c) {
+    const std::size_t start = near[c] * kBlock;
     const std::size_t m = std::min(kBlock, n - start);
     loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
                    static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
@@ -439,7 +466,7 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
     for (; k < m; ++k) acc[k % kLanes] += v[k];
     const double sum = total();
     if (sum >= stop_at) break;
-    if (test && (sum + left[start / kBlock + 1]) * kMargin < stop_at) break;
+    if (test && (sum + left[c + 1]) * kMargin < stop_at) break;
   }
   return total();
 }

@@ -15,6 +15,7 @@
 #include "plumetrace/io/sweep_file.hpp"
 #include "plumetrace/io/trace_io.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/vector_world.hpp"
 #include "plumetrace/sim/world.hpp"
 
 namespace plumetrace {
@@ -96,6 +97,30 @@ void BM_OdorQuery(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_OdorQuery);
+
+// one decision of 1024 vector-environment agents at decision interval 1 with random headings
+// (redrawn every 16 steps), groups of range(0) agents per plume (range 1: 1 concentration
+// observation, else binary), on one thread: what plumetrace.vector costs without Python
+void BM_VectorStep(benchmark::State& state) {
+  VectorSpec spec;
+  spec.envs = 1024;
+  spec.group = static_cast<int>(state.range(0));
+  spec.observe.concentration = state.range(1) != 0;
+  VectorWorld world(Scenario{}, spec);
+  world.reset(std::vector<std::uint64_t>(1024, 1));
+  Rng rng(7);
+  std::vector<double> actions(1024);
+  std::int64_t k = 0;
+  for (auto _ : state) {
+    if (k++ % 16 == 0) {
+      for (double& a : actions) a = 2.0 * rng.uniform() - 1.0;
+    }
+    world.step(actions);
+  }
+  state.SetItemsProcessed(state.iterations() * 1024);
+  state.SetLabel(state.range(1) != 0 ? "concentration" : "binary");
+}
+BENCHMARK(BM_VectorStep)->ArgsProduct({{64, 1024}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // one run per algorithm (range 0) in the laminar wind or the default meander (range 1)
 void BM_WholeRun(benchmark::State& state) {

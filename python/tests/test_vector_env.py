@@ -390,3 +390,21 @@ def test_gymnasium_accepts_the_vector_env():
     wrapped.reset(seed=1)
     for _ in range(5):
         wrapped.step(wrapped.action_space.sample())
+
+
+def test_scenario_keys_work_a_start_in_odor_meets_odor_on_the_running_plume():
+    # a new episode is released into the group's plume as it is and senses it at once, so a
+    # start drawn in odor (start.condition = "in_odor") is in odor at its first observation
+    scenario = Path(pt.__file__).resolve().parents[2] / "scenarios" / "switch-many.toml"
+    if not scenario.exists():  # an installed package: the scenario ships with the repository
+        pytest.skip("scenarios/ is not at hand")
+    env = VectorPlumeEnv(8, str(scenario), group_size=4, observe=("odor", "odometry"),
+                         supervisor__timeout=1.0)
+    obs, info = env.reset(seed=3)
+    starts = []
+    for a in actions(8, 60, seed=9):
+        obs, _, _, _, info = env.step(a)
+        new = (obs[:, 1:5] == 0).all(axis=1)  # odometry at 0: the first observation of one
+        starts += list(obs[new, 0])
+    assert len(starts) >= 8 and all(v == 1 for v in starts)
+    assert info["trial"].min() >= 1

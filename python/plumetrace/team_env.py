@@ -101,15 +101,15 @@ class TeamPlumeEnv:
             f"{name}[{k}]" if self.stack > 1 else name
             for k in range(self.stack) for part in self.observe for name in _NAMES[part])
         """The name of each value of an observation ([k]: k frames back)."""
-        self._observation_spaces = {
+        self.observation_spaces = {
             agent: Box(*self._world.bounds(k), dtype=np.float32)
             for k, agent in enumerate(self.possible_agents)}
         if self.discrete_headings is None:
-            self._action_spaces = {
+            self.action_spaces = {
                 agent: Box(np.array([-1.0], np.float32), np.array([1.0], np.float32),
                            dtype=np.float32) for agent in self.possible_agents}
         else:
-            self._action_spaces = {agent: Discrete(self.discrete_headings)
+            self.action_spaces = {agent: Discrete(self.discrete_headings)
                                    for agent in self.possible_agents}
         arena = self.config["arena"]
         low = np.tile(np.array([arena["x_min"], arena["y_min"], -math.pi], np.float32), n)
@@ -147,11 +147,11 @@ class TeamPlumeEnv:
 
     def observation_space(self, agent):
         """The agent's observation space (the same object at every call)."""
-        return self._observation_spaces[self._agent(agent, "observation_space")]
+        return self.observation_spaces[self._agent(agent, "observation_space")]
 
     def action_space(self, agent):
         """The agent's action space (the same object at every call)."""
-        return self._action_spaces[self._agent(agent, "action_space")]
+        return self.action_spaces[self._agent(agent, "action_space")]
 
     def reset(self, seed=None, options=None):
         """Starts an episode, every robot an agent again; returns (observations, infos), dicts

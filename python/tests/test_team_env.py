@@ -63,7 +63,7 @@ def test_a_team_episode_follows_the_parallel_api_and_agents_leave_as_they_end():
     assert infos["robot_0"]["outcome"] == "timeout" and truncs["robot_0"] and not terms["robot_0"]
     assert env.result("robot_1")["outcome"] == "wall"
     assert env.result("robot_2")["outcome"] == "wall"
-    assert env.result("robot_0")["time"] == pytest.approx(30.0, abs=0.04)
+    assert env.result("robot_0")["time_s"] == pytest.approx(30.0, abs=0.04)
     with pytest.raises(RuntimeError, match="reset"):
         env.step({})
     state = env.state()
@@ -110,10 +110,11 @@ def test_a_seed_replays_every_value_and_a_reset_without_one_plays_the_next_trial
 
 
 def test_actions_that_give_a_controllers_commands_reproduce_the_built_in_run():
-    # a Python controller turning odor into a heading, and the same rule as actions: robot 0's
-    # run (the one pt.run returns) meets its teammates through contacts, so it checks the team
+    # a Python controller turning odor into a heading, and the same rule as actions. Robot 0's
+    # run (the one pt.run returns) meets its teammates: without contacts it would differ, so its
+    # equality checks the team's step, contacts included
     def rule(k, odor):
-        return 0.0 if odor else (0.75 if k % 2 else -0.75)
+        return 0.0 if odor else (0.5 if k % 2 else -0.5)
 
     class Rule:
         def __init__(self, k):
@@ -122,24 +123,29 @@ def test_actions_that_give_a_controllers_commands_reproduce_the_built_in_run():
         def step(self, obs, wind):
             return pt.controllers.Command.go(math.pi * rule(self.k, obs.odor))
 
-    made = []
+    def built_in(**more):
+        made = []
 
-    def factory(scenario, rng):
-        made.append(Rule(len(made)))
-        return made[-1]
+        def factory(scenario, rng):
+            made.append(Rule(len(made)))
+            return made[-1]
 
-    keys = {"team__count": 3, "supervisor__timeout": 40.0, "wind__model": "meander"}
-    built_in = pt.run(controller=factory, seed=5, trial=2, trace=False, **keys)
-    assert len(made) == 3
+        out = pt.run(controller=factory, seed=5, trial=2, trace=False, **keys, **more)
+        assert len(made) == 3
+        return out
+
+    keys = {"team__count": 3, "supervisor__timeout": 40.0, "wind__model": "meander",
+            "supervisor__walls": "block"}
     env = TeamPlumeEnv(observe=("odor",), **keys)
     obs, _ = env.reset(seed=5, options={"trial": 2})
     while env.agents:
         obs, *_ = env.step({a: rule(int(a[-1]), obs[a][0] == 1.0) for a in env.agents})
-    mine = env.result("robot_0")
-    shared = sorted(set(mine) & set(built_in) - {"algorithm"})
-    assert {"outcome", "time", "d_t", "d_u", "steps", "odor_fraction"} <= set(shared)
-    assert {k: mine[k] for k in shared} == {k: built_in[k] for k in shared}
-    assert built_in["steps"] > 100
+    mine, theirs = env.result("robot_0"), built_in()
+    shared = sorted(set(mine) & set(theirs) - {"algorithm"})
+    assert {"outcome", "time_s", "d_t", "d_u", "steps", "odor_fraction"} <= set(shared)
+    assert {k: mine[k] for k in shared} == {k: theirs[k] for k in shared}
+    assert theirs["steps"] == 1250 and theirs["odor_fraction"] > 0.0
+    assert built_in(team__contact="off")["d_t"] != mine["d_t"]
 
 
 def test_a_shaped_reward_sums_to_the_share_of_the_distance_closed_and_reward_fn_replaces_it():
@@ -190,7 +196,7 @@ def test_bad_input_is_refused_naming_the_agent_and_the_argument():
     refused(TypeError, "robot_2.*<U", robot_2=np.array(["0.5"]))
     refused(TypeError, "robot_2.*not a number", robot_2=None)
     refused(TypeError, "robot_2.*complex", robot_2=1j)
-    with pytest.raises(ValueError, match="no action for robot_1"):
+    with pytest.raises(ValueError, match=r"no action for \[robot_1\]"):
         env.step({"robot_0": 0.0, "robot_2": 0.0})
     with pytest.raises(TypeError, match="dict keyed by agent"):
         env.step([0.0, 0.0, 0.0])
@@ -198,8 +204,9 @@ def test_bad_input_is_refused_naming_the_agent_and_the_argument():
         env.observation_space("robot_9")
     with pytest.raises(ValueError, match="not an agent"):
         env.action_space(0)
-    # nothing moved: the refused steps left the episode where it was
-    assert env.step(ok)[4]["robot_0"]["time"] == pytest.approx(8 * 0.032)
+    # nothing moved: the refused steps left the episode where it was (the first sensing, at
+    # reset, is step 1; one decision is 8 more)
+    assert env.step(ok)[4]["robot_0"]["time"] == pytest.approx(9 * 0.032)
     # a robot whose run has ended may not act
     plan = away_from_the_middle(infos, diagonal=False)
     while len(env.agents) == 3:

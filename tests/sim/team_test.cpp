@@ -593,7 +593,7 @@ TEST(Team, ATeamDrivenFromOutsideWithItsControllersCommandsIsTheBuiltInRun) {
   for (const Algorithm a : library_algorithms()) {
     const std::string name(algorithm_name(a));
     const Scenario s = build_scenario(
-        {setting("controller.algorithm", name), setting("supervisor.timeout", 40.0),
+        {setting("controller.algorithm", name), setting("supervisor.timeout", 25.0),
          setting("supervisor.walls", std::string("block")), setting("team.count", std::int64_t{3}),
          setting("team.range", 1.0), setting("team.delay", 0.1),
          setting("wind.model", std::string("meander")), setting("meander.gain", 0.14),

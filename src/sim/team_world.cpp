@@ -124,13 +124,9 @@ void TeamWorld::step(std::span<const double> actions) {
     throw std::invalid_argument("actions: " + std::to_string(actions.size()) + " actions for " +
                                 std::to_string(n) + " robots");
   }
-  // each running robot's command for the decision, checked before anything moves
+  // every running robot's action, checked before anything changes
   for (std::size_t i = 0; i < n; ++i) {
-    reward_[i] = 0.0;
-    sensed_[i] = odor_count_[i] = 0;
-    decided_[i] = !world_->agent(i).done();
-    commands_[i] = Command{};
-    if (!decided_[i]) continue;
+    if (world_->agent(i).done()) continue;
     const double a = actions[i];
     const auto refuse = [&](const std::string& why) {
       throw std::invalid_argument("actions[" + std::to_string(i) + "] (robot " + std::to_string(i) +
@@ -141,7 +137,15 @@ void TeamWorld::step(std::span<const double> actions) {
         (a != std::floor(a) || a < 0.0 || a >= static_cast<double>(spec_.headings))) {
       refuse("not an index from 0 to " + std::to_string(spec_.headings - 1));
     }
-    commands_[i] = action_command(spec_.action, spec_.headings, a, last_[i].odometry.heading);
+  }
+  // each running robot's command for the decision
+  for (std::size_t i = 0; i < n; ++i) {
+    reward_[i] = 0.0;
+    sensed_[i] = odor_count_[i] = 0;
+    decided_[i] = !world_->agent(i).done();
+    commands_[i] = decided_[i] ? action_command(spec_.action, spec_.headings, actions[i],
+                                                last_[i].odometry.heading)
+                               : Command{};
   }
   for (int step_no = 0; step_no < spec_.decision_interval; ++step_no) {
     for (std::size_t i = 0; i < n; ++i) moving_[i] = !world_->agent(i).done();

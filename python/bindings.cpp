@@ -1534,6 +1534,10 @@ void bind_evidence(py::module_& m) {
 void bind_vector(py::module_& m,
                  const std::function<pt::Scenario(const std::optional<std::string>&,
                                                   const py::list&)>& scenario_of);
+// python/team_bindings.cpp
+void bind_team(py::module_& m,
+               const std::function<pt::Scenario(const std::optional<std::string>&,
+                                                const py::list&)>& scenario_of);
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "plumetrace C++ core (use the plumetrace package, not this module)";
@@ -1677,6 +1681,7 @@ PYBIND11_MODULE(_core, m) {
   bind_evidence(m);
 
   bind_vector(m, scenario_of);
+  bind_team(m, scenario_of);
 
   // a run driven step by step from Python (plumetrace.env)
   py::class_<pt::World>(m, "World")

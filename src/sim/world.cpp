@@ -400,6 +400,7 @@ void World::start(const Scenario& scenario, std::uint64_t seed, std::uint64_t tr
 }
 
 void World::step() {
+  if (observed_) throw std::logic_error("step: observe_team() waits for act_team()");
   if (done()) return;
   // environment: the wind, then the filaments move in it and new ones are released
   plumetrace::step(env_, dt_);
@@ -418,6 +419,58 @@ void World::step() {
     sent_from_[i] = {r.pose.x, r.pose.y};
     commands_[i] = agents_[i]->decide();
   }
+  move_agents();
+}
+
+const std::vector<Observation>& World::observe_team() {
+  if (observed_) throw std::logic_error("observe_team: call act_team() first");
+  if (done()) throw std::logic_error("observe_team: every agent's run has ended");
+  // the first half of step(): the environment, then every running robot senses
+  plumetrace::step(env_, dt_);
+  const std::size_t n = agents_.size();
+  seen_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    running_[i] = !agents_[i]->done();
+    if (!running_[i]) {
+      seen_[i] = Observation{};
+      continue;
+    }
+    const RobotState& r = agents_[i]->robot();
+    sent_from_[i] = {r.pose.x, r.pose.y};
+    seen_[i] = agents_[i]->sense();
+  }
+  observed_ = true;
+  return seen_;
+}
+
+void World::act_team(std::span<const Command> commands) {
+  if (!observed_) throw std::logic_error("act_team: call observe_team() first");
+  const std::size_t n = agents_.size();
+  if (commands.size() != n) {
+    throw std::invalid_argument("act_team: " + std::to_string(commands.size()) + " commands for " +
+                                std::to_string(n) + " agents");
+  }
+  // why: checked before anything moves, so a refused command leaves the world as it was
+  for (std::size_t i = 0; i < n; ++i) {
+    const Command& c = commands[i];
+    if (!running_[i]) continue;
+    bool finite = std::isfinite(c.heading) && std::isfinite(c.curvature);
+    if (c.declare) finite = finite && std::isfinite(c.source.x) && std::isfinite(c.source.y);
+    if (!finite) {
+      throw std::invalid_argument("act_team: commands[" + std::to_string(i) + "] (agent " +
+                                  std::to_string(i) + ") holds a value that is not finite");
+    }
+  }
+  observed_ = false;
+  for (std::size_t i = 0; i < n; ++i) commands_[i] = running_[i] ? commands[i] : Command{};
+  move_agents();
+}
+
+void World::move_agents() {
+  // the second half of step(): every running robot proposes its motion, contacts are resolved
+  // within each team, every one commits and is checked, messages are queued
+  const std::size_t n = agents_.size();
+  const std::vector<char>& running = running_;
   for (std::size_t i = 0; i < n; ++i) {
     if (running[i]) agents_[i]->propose(commands_[i]);
   }

@@ -7,8 +7,11 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/world.hpp"
@@ -541,6 +544,100 @@ TEST(Team, BadMemberKeysAreRefusedNamingTheKey) {
   refused({two, setting("start.region", std::string("rectangle")),
            setting("member.1.robot.start_x", 12.0)},
           "member.1.robot.start_x");
+}
+
+// A controller's stand-in in a world driven from outside: it reads and counts losses as the
+// controller it holds, which the test asks for the commands instead of the world.
+class Held final : public Controller {
+ public:
+  explicit Held(std::unique_ptr<Controller> inner) : inner_(std::move(inner)) {}
+  Command step(const Observation&, WindProbe&) override {
+    throw std::logic_error("a held controller is asked from outside");
+  }
+  std::string_view state() const override { return inner_->state(); }
+  int losses() const override { return inner_->losses(); }
+  unsigned reads() const override { return inner_->reads(); }
+  Controller& inner() { return *inner_; }
+
+ private:
+  std::unique_ptr<Controller> inner_;
+};
+
+// run (seed, trial) of the scenario's team, every robot decided from outside by the
+// controller the built-in run gives it (the same algorithm, keys and controller stream)
+std::vector<RunResult> driven_from_outside(const Scenario& s, std::uint64_t seed,
+                                           std::uint64_t trial) {
+  std::vector<Held*> held;
+  const ControllerFactory factory = [&held](const Scenario& own, Rng rng) {
+    auto h = std::make_unique<Held>(make_controller(own.controller, rng));
+    held.push_back(h.get());
+    return h;
+  };
+  World w({&s}, seed, trial, factory);
+  std::vector<Command> commands(w.agent_count());
+  while (!w.done()) {
+    const std::vector<Observation>& seen = w.observe_team();
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+      if (!w.agent(i).done()) commands[i] = held[i]->inner().step(seen[i], w.wind_probe(i));
+    }
+    w.act_team(commands);
+  }
+  return w.results();
+}
+
+// Every library algorithm in a team of three on the benchmark's team task (strong meander,
+// walls that block, robots 0.3 m apart, contacts on), with messages that carry 1 m and arrive
+// after 0.1 s: observe_team and act_team with the controllers' commands are World::step, bit
+// for bit, for every robot.
+TEST(Team, ATeamDrivenFromOutsideWithItsControllersCommandsIsTheBuiltInRun) {
+  for (const Algorithm a : library_algorithms()) {
+    const std::string name(algorithm_name(a));
+    const Scenario s = build_scenario(
+        {setting("controller.algorithm", name), setting("supervisor.timeout", 25.0),
+         setting("supervisor.walls", std::string("block")), setting("team.count", std::int64_t{3}),
+         setting("team.range", 1.0), setting("team.delay", 0.1),
+         setting("wind.model", std::string("meander")), setting("meander.gain", 0.14),
+         setting("member.1.hayes.origin_y", 0.3), setting("member.2.hayes.origin_y", -0.3)});
+    const std::vector<RunResult> built_in = run_team(s, kSeed, 2);
+    const std::vector<RunResult> outside = driven_from_outside(s, kSeed, 2);
+    ASSERT_EQ(outside.size(), 3u) << name;
+    for (std::size_t k = 0; k < 3; ++k) {
+      SCOPED_TRACE(name + ", robot " + std::to_string(k));
+      expect_same(outside[k], built_in[k]);
+      EXPECT_EQ(bits(outside[k].declaration_error), bits(built_in[k].declaration_error));
+      EXPECT_EQ(bits(outside[k].odor_fraction), bits(built_in[k].odor_fraction));
+    }
+  }
+}
+
+TEST(Team, StepsFromOutsideAreRefusedOutOfOrderOrWithAValueThatIsNotFinite) {
+  Scenario s = scenario(Algorithm::kCasting, 10.0);
+  s.team.count = 2;
+  validate(s);
+  World w({&s}, kSeed, 0);
+  std::vector<Command> commands(2, Command::go(0.0));
+  EXPECT_THROW(w.act_team(commands), std::logic_error);  // no observation yet
+  w.observe_team();
+  EXPECT_THROW(w.observe_team(), std::logic_error);  // twice
+  EXPECT_THROW(w.step(), std::logic_error);          // a step in the middle
+  const Vec2 before = w.agent(0).position();
+  commands[1] = Command::go(NAN);
+  try {
+    w.act_team(commands);
+    ADD_FAILURE() << "a NaN heading was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("agent 1"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(w.agent(0).position().x, before.x);  // nothing moved
+  EXPECT_THROW(w.act_team(std::vector<Command>(3)), std::invalid_argument);
+  commands[1] = Command::go(0.0);
+  w.act_team(commands);  // the refused call left the observation waiting
+  EXPECT_LT(w.agent(0).position().x, before.x);
+  while (!w.done()) {
+    w.observe_team();
+    w.act_team(commands);
+  }
+  EXPECT_THROW(w.observe_team(), std::logic_error);  // every run has ended
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -210,6 +211,23 @@ class World {
   void act(const Command& command) { agents_.front()->act(command); }
   /// The wind sensor of agent 0, for a decision made outside the controller.
   WindProbe& wind_probe() { return agents_.front()->wind_probe(); }
+  /// A step of every agent split for decisions made outside the controllers (a learning team,
+  /// docs/vector.md, "Teams"): the environment, then every running agent senses what its
+  /// controller reads; observations()[i] is agent i's (a default one for an agent whose run has
+  /// ended), valid until the next call. std::logic_error once every run has ended, or before
+  /// act_team() has followed the last call ...
+  const std::vector<Observation>& observe_team();
+  /// ... then every running agent proposes commands[i] (the command of an agent whose run had
+  /// ended is ignored), contacts are resolved, every one commits and is checked, messages are
+  /// queued: observe_team() and act_team() with the commands the controllers would return make
+  /// exactly step(). std::invalid_argument naming the agent, before anything moves, for a
+  /// command with a value that is not finite or a count other than agent_count().
+  void act_team(std::span<const Command> commands);
+  /// Agent i's wind sensor, for a decision made outside its controller (between observe_team
+  /// and act_team).
+  WindProbe& wind_probe(std::size_t i) { return agents_.at(i)->wind_probe(); }
+  /// The observations of the last observe_team().
+  const std::vector<Observation>& observations() const { return seen_; }
   /// True once every agent's run has ended.
   bool done() const;
   /// Agent 0's metrics so far.
@@ -248,6 +266,7 @@ class World {
   void add_team(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial,
                 std::unique_ptr<Controller> first, const ControllerFactory& factory);
   void start(const Scenario& scenario, std::uint64_t seed, std::uint64_t trial);
+  void move_agents();
   void resolve_contacts(std::size_t begin, std::size_t end);
   void send_messages(std::size_t begin, std::size_t end);
 
@@ -265,6 +284,8 @@ class World {
   std::vector<double> move_;       // contact resolution: the length of the agent's move
   std::vector<Vec2> normals_;      // contact resolution: toward the teammates a move meets
   std::vector<double> gaps_;       // contact resolution: the gaps to them
+  std::vector<Observation> seen_;  // observe_team: each agent's sensing
+  bool observed_ = false;          // observe_team has been called, act_team not yet
 };
 
 /// Called after the warm-up and after every step of a run.

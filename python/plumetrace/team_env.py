@@ -39,7 +39,7 @@ from . import _core
 from .api import _load_json, _settings, _whole
 from .controllers import _is_bool, _shown
 from .env import Box, Discrete, _np_random
-from .vector import _NAMES, _WIDTH, _observed
+from .vector import _agent_options, _observation_names, _observe_flags
 
 __all__ = ["TeamPlumeEnv"]
 
@@ -65,41 +65,19 @@ class TeamPlumeEnv:
                  **keys):
         if "seed" in keys:
             raise TypeError("TeamPlumeEnv takes no seed: reset(seed=...) seeds an episode")
-        self.decision_interval = _whole("decision_interval", decision_interval, 1, 2**31 - 1)
-        if not isinstance(observation, str) or observation not in ("binary", "concentration"):
-            raise ValueError(f"observation must be 'binary' or 'concentration', got "
-                             f"{_shown(observation)}")
-        self.observation = observation
-        self.observe = _observed(observe)
-        self.stack = _whole("stack", stack, 1, 1024)
-        if not isinstance(action, str) or action not in ("heading", "turn", "discrete"):
-            raise ValueError(f"action must be 'heading', 'turn' or 'discrete', got "
-                             f"{_shown(action)}")
-        if (action == "discrete") != (discrete_headings is not None):
-            raise ValueError("action='discrete' goes with discrete_headings=n (and only it), "
-                             f"got action={action!r}, discrete_headings={_shown(discrete_headings)}")
-        self.action = action
-        self.discrete_headings = (None if discrete_headings is None else
-                                  _whole("discrete_headings", discrete_headings, 1, 2**31 - 1))
-        if not isinstance(reward, str) or reward not in ("success", "shaped"):
-            raise ValueError(f"reward must be 'success' or 'shaped', got {_shown(reward)}")
-        if reward_fn is not None and not callable(reward_fn):
-            raise TypeError(f"reward_fn must be callable, got {_shown(reward_fn)}")
-        self.reward, self.reward_fn = reward, reward_fn
+        _agent_options(self, decision_interval, observation, observe, stack, action,
+                       discrete_headings, reward, reward_fn)
 
         path, settings = _settings(scenario, None, overrides, keys)
         self.config = _load_json(_core.resolve_json(path, settings))  # checks every key now
-        flags = {name: name in self.observe for name in _WIDTH}
-        flags.update(concentration=observation == "concentration", stack=self.stack)
-        self._world = _core.TeamWorld(path, settings, self.decision_interval, flags, action,
+        self._world = _core.TeamWorld(path, settings, self.decision_interval,
+                                      _observe_flags(self), action,
                                       self.discrete_headings or 0, reward)
         n = self._world.size
         self.possible_agents = [f"robot_{k}" for k in range(n)]
         self.agents = []
         self._index = {agent: k for k, agent in enumerate(self.possible_agents)}
-        self.observation_names = tuple(
-            f"{name}[{k}]" if self.stack > 1 else name
-            for k in range(self.stack) for part in self.observe for name in _NAMES[part])
+        self.observation_names = _observation_names(self)
         """The name of each value of an observation ([k]: k frames back)."""
         self.observation_spaces = {
             agent: Box(*self._world.bounds(k), dtype=np.float32)

@@ -141,35 +141,15 @@ class VectorPlumeEnv(_VectorBase):
         if not isinstance(renew_plumes, bool):
             raise TypeError(f"renew_plumes must be True or False, got {_shown(renew_plumes)}")
         self.renew_plumes = renew_plumes
-        self.decision_interval = _whole("decision_interval", decision_interval, 1, 2**31 - 1)
-        if not isinstance(observation, str) or observation not in ("binary", "concentration"):
-            raise ValueError(f"observation must be 'binary' or 'concentration', got "
-                             f"{_shown(observation)}")
-        self.observation = observation
-        self.observe = _observed(observe)
-        self.stack = _whole("stack", stack, 1, 1024)
-        if not isinstance(action, str) or action not in ("heading", "turn", "discrete"):
-            raise ValueError(f"action must be 'heading', 'turn' or 'discrete', got "
-                             f"{_shown(action)}")
-        if (action == "discrete") != (discrete_headings is not None):
-            raise ValueError("action='discrete' goes with discrete_headings=n (and only it), "
-                             f"got action={action!r}, discrete_headings={_shown(discrete_headings)}")
-        self.action = action
-        self.discrete_headings = (None if discrete_headings is None else
-                                  _whole("discrete_headings", discrete_headings, 1, 2**31 - 1))
-        if not isinstance(reward, str) or reward not in ("success", "shaped"):
-            raise ValueError(f"reward must be 'success' or 'shaped', got {_shown(reward)}")
-        if reward_fn is not None and not callable(reward_fn):
-            raise TypeError(f"reward_fn must be callable, got {_shown(reward_fn)}")
-        self.reward, self.reward_fn = reward, reward_fn
+        _agent_options(self, decision_interval, observation, observe, stack, action,
+                       discrete_headings, reward, reward_fn)
         threads = _whole("threads", threads, 0, _core.MAX_THREADS)
         self.threads = threads or (os.cpu_count() or 1)
 
         path, settings = _settings(scenario, None, overrides, keys)
-        flags = {name: name in self.observe for name in _WIDTH}
-        flags.update(concentration=observation == "concentration", stack=self.stack)
         self._world = _core.VectorWorld(path, settings, self.num_envs, self.group_size,
-                                        renew_plumes, self.decision_interval, flags, action,
+                                        renew_plumes, self.decision_interval,
+                                        _observe_flags(self), action,
                                         self.discrete_headings or 0, reward, self.threads)
         self.render_mode = None
         self.spec = None
@@ -178,9 +158,7 @@ class VectorPlumeEnv(_VectorBase):
         self._np_random = None
         self._np_random_seed = None
         low, high = self._world.bounds()
-        self.observation_names = tuple(
-            f"{name}[{k}]" if self.stack > 1 else name
-            for k in range(self.stack) for part in self.observe for name in _NAMES[part])
+        self.observation_names = _observation_names(self)
         """The name of each value of an observation ([k]: k frames back)."""
         self.single_observation_space = Box(low, high, dtype=np.float32)
         self.observation_space = Box(np.tile(low, (self.num_envs, 1)),
@@ -319,6 +297,45 @@ class VectorPlumeEnv(_VectorBase):
             raise ValueError(f"actions[{i}] = {array.reshape(n)[i]}: out of 0 to "
                              f"{self.discrete_headings - 1}")
         return np.ascontiguousarray(values)
+
+
+def _agent_options(env, decision_interval, observation, observe, stack, action,
+                   discrete_headings, reward, reward_fn):
+    """Checks the options that VectorPlumeEnv and TeamPlumeEnv share (docs/vector.md) and sets
+    them on `env`: decision_interval, observation, observe, stack, action, discrete_headings,
+    reward, reward_fn. Raises TypeError or ValueError naming the option."""
+    env.decision_interval = _whole("decision_interval", decision_interval, 1, 2**31 - 1)
+    if not isinstance(observation, str) or observation not in ("binary", "concentration"):
+        raise ValueError(f"observation must be 'binary' or 'concentration', got "
+                         f"{_shown(observation)}")
+    env.observation = observation
+    env.observe = _observed(observe)
+    env.stack = _whole("stack", stack, 1, 1024)
+    if not isinstance(action, str) or action not in ("heading", "turn", "discrete"):
+        raise ValueError(f"action must be 'heading', 'turn' or 'discrete', got {_shown(action)}")
+    if (action == "discrete") != (discrete_headings is not None):
+        raise ValueError("action='discrete' goes with discrete_headings=n (and only it), "
+                         f"got action={action!r}, discrete_headings={_shown(discrete_headings)}")
+    env.action = action
+    env.discrete_headings = (None if discrete_headings is None else
+                             _whole("discrete_headings", discrete_headings, 1, 2**31 - 1))
+    if not isinstance(reward, str) or reward not in ("success", "shaped"):
+        raise ValueError(f"reward must be 'success' or 'shaped', got {_shown(reward)}")
+    if reward_fn is not None and not callable(reward_fn):
+        raise TypeError(f"reward_fn must be callable, got {_shown(reward_fn)}")
+    env.reward, env.reward_fn = reward, reward_fn
+
+
+def _observe_flags(env):
+    """What the C++ ObservationSpec takes, from the checked options."""
+    flags = {name: name in env.observe for name in _WIDTH}
+    flags.update(concentration=env.observation == "concentration", stack=env.stack)
+    return flags
+
+
+def _observation_names(env):
+    return tuple(f"{name}[{k}]" if env.stack > 1 else name
+                 for k in range(env.stack) for part in env.observe for name in _NAMES[part])
 
 
 def _observed(observe):

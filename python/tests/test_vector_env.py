@@ -401,10 +401,12 @@ def test_scenario_keys_work_a_start_in_odor_meets_odor_on_the_running_plume():
     env = VectorPlumeEnv(8, str(scenario), group_size=4, observe=("odor", "odometry"),
                          supervisor__timeout=1.0)
     obs, info = env.reset(seed=3)
-    starts = []
-    for a in actions(8, 60, seed=9):
+    starts, trial = [], info["trial"]
+    for a in actions(8, 70, seed=9):
         obs, _, _, _, info = env.step(a)
-        new = (obs[:, 1:5] == 0).all(axis=1)  # odometry at 0: the first observation of one
+        new = info["trial"] != trial  # the first observation of a new episode
+        trial = info["trial"]
+        assert (obs[new, 1:5] == 0).all()  # released: its odometry starts there
         starts += list(obs[new, 0])
     assert len(starts) >= 8 and all(v == 1 for v in starts)
     assert info["trial"].min() >= 1

@@ -35,31 +35,9 @@ double distance_to_source(const Scenario& scenario, const RobotState& robot) {
 
 }  // namespace
 
-Command action_command(ActionMode mode, int headings, double a, double odometry_heading) {
-  switch (mode) {
-    case ActionMode::kHeading:
-      return Command::go(kPi * std::clamp(a, -1.0, 1.0));
-    case ActionMode::kTurn:
-      return Command::go(wrap_angle(odometry_heading + kPi * std::clamp(a, -1.0, 1.0)));
-    case ActionMode::kDiscrete:
-      break;
-  }
-  return Command::go(wrap_angle(2.0 * kPi * a / static_cast<double>(headings)));
-}
-
 TeamWorld::TeamWorld(const Scenario& scenario, const TeamSpec& spec)
     : scenario_(scenario), spec_(spec) {
-  const auto refuse = [](const std::string& why) { throw std::invalid_argument(why); };
-  if (spec.decision_interval < 1) {
-    refuse("decision_interval = " + std::to_string(spec.decision_interval) + ": must be >= 1");
-  }
-  if (spec.observe.stack < 1 || spec.observe.stack > 1024) {
-    refuse("stack = " + std::to_string(spec.observe.stack) + ": must be from 1 to 1024");
-  }
-  if (spec.observe.frame_width() == 0) refuse("observations: at least one value is observed");
-  if (spec.action == ActionMode::kDiscrete && spec.headings < 1) {
-    refuse("discrete_headings = " + std::to_string(spec.headings) + ": must be >= 1");
-  }
+  check_agent_options(spec.decision_interval, spec.observe, spec.action, spec.headings);
   const std::size_t n = size();
   for (std::size_t k = 0; k < n; ++k) {
     robots_.push_back(k == 0 ? scenario : member_scenario(scenario, static_cast<int>(k)));

@@ -78,6 +78,33 @@ void observation_bounds(const ObservationSpec& spec, const Scenario& scenario,
   }
 }
 
+Command action_command(ActionMode mode, int headings, double a, double odometry_heading) {
+  switch (mode) {
+    case ActionMode::kHeading:
+      return Command::go(kPi * std::clamp(a, -1.0, 1.0));
+    case ActionMode::kTurn:
+      return Command::go(wrap_angle(odometry_heading + kPi * std::clamp(a, -1.0, 1.0)));
+    case ActionMode::kDiscrete:
+      break;
+  }
+  return Command::go(wrap_angle(2.0 * kPi * a / static_cast<double>(headings)));
+}
+
+void check_agent_options(int decision_interval, const ObservationSpec& observe, ActionMode action,
+                         int headings) {
+  const auto refuse = [](const std::string& why) { throw std::invalid_argument(why); };
+  if (decision_interval < 1) {
+    refuse("decision_interval = " + std::to_string(decision_interval) + ": must be >= 1");
+  }
+  if (observe.stack < 1 || observe.stack > 1024) {
+    refuse("stack = " + std::to_string(observe.stack) + ": must be from 1 to 1024");
+  }
+  if (observe.frame_width() == 0) refuse("observations: at least one value is observed");
+  if (action == ActionMode::kDiscrete && headings < 1) {
+    refuse("discrete_headings = " + std::to_string(headings) + ": must be >= 1");
+  }
+}
+
 namespace {
 
 // The controller of an agent driven from outside: it is never asked to decide.
@@ -210,16 +237,7 @@ VectorWorld::VectorWorld(const Scenario& scenario, const VectorSpec& spec)
     refuse("renew_plumes: a fresh plume per episode needs group_size = 1, not " +
            std::to_string(spec.group));
   }
-  if (spec.decision_interval < 1) {
-    refuse("decision_interval = " + std::to_string(spec.decision_interval) + ": must be >= 1");
-  }
-  if (spec.observe.stack < 1 || spec.observe.stack > 1024) {
-    refuse("stack = " + std::to_string(spec.observe.stack) + ": must be from 1 to 1024");
-  }
-  if (spec.observe.frame_width() == 0) refuse("observations: at least one value is observed");
-  if (spec.action == ActionMode::kDiscrete && spec.headings < 1) {
-    refuse("discrete_headings = " + std::to_string(spec.headings) + ": must be >= 1");
-  }
+  check_agent_options(spec.decision_interval, spec.observe, spec.action, spec.headings);
   if (scenario.team.count != 1) {
     refuse("team.count = " + std::to_string(scenario.team.count) +
            ": a vector environment drives one robot per environment (a team: TeamPlumeEnv)");
@@ -404,20 +422,8 @@ void VectorWorld::step_group(std::size_t g) {
     terminated_[i] = truncated_[i] = 0;
     if (s.waiting) continue;
     anyone = true;
-    const double a = actions_[i];
-    double heading = 0.0;
-    switch (spec_.action) {
-      case ActionMode::kHeading:
-        heading = kPi * std::clamp(a, -1.0, 1.0);
-        break;
-      case ActionMode::kTurn:
-        heading = wrap_angle(s.seen.odometry.heading + kPi * std::clamp(a, -1.0, 1.0));
-        break;
-      case ActionMode::kDiscrete:
-        heading = wrap_angle(2.0 * kPi * a / static_cast<double>(spec_.headings));
-        break;
-    }
-    commands[i - begin] = Command::go(heading);
+    commands[i - begin] =
+        action_command(spec_.action, spec_.headings, actions_[i], s.seen.odometry.heading);
   }
   // why: with a fresh plume per episode, a plume whose only agent waits is replaced, not stepped
   const bool step_plume = anyone || !spec_.renew_plumes;

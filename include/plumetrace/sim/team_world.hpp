@@ -24,11 +24,6 @@ struct TeamSpec {
   RewardMode reward = RewardMode::kSuccess;
 };
 
-/// The command of action `a` (docs/vector.md, "Actions"): kHeading, kTurn: a in [-1, 1],
-/// clipped, kTurn turning from `odometry_heading` (rad, the robot's at its last sensing);
-/// kDiscrete: an index of `headings`.
-Command action_command(ActionMode mode, int headings, double a, double odometry_heading);
-
 /// The scenario's team (team.count robots on one plume, with its contacts and messages),
 /// every robot decided from outside by actions (docs/vector.md, "Teams"). A decision holds each
 /// robot's action for decision_interval steps of World::observe_team and World::act_team; a

@@ -58,6 +58,17 @@ enum class ActionMode {
   kDiscrete,  ///< an index i of n: go along heading 2 pi i / n
 };
 
+/// The command of action `a` (docs/vector.md, "Actions"): kHeading, kTurn: a in [-1, 1],
+/// clipped, kTurn turning from `odometry_heading` (rad, the robot's at its last sensing);
+/// kDiscrete: an index of `headings`.
+Command action_command(ActionMode mode, int headings, double a, double odometry_heading);
+
+/// Checks the options a learning agent's decisions share (std::invalid_argument naming the
+/// option): decision_interval >= 1, a stack of 1 to 1024 frames of at least one value, and
+/// with kDiscrete at least one heading.
+void check_agent_options(int decision_interval, const ObservationSpec& observe, ActionMode action,
+                         int headings);
+
 /// The reward of a decision (docs/vector.md, "Rewards").
 enum class RewardMode {
   kSuccess,  ///< 1 at the step the run succeeds, else 0

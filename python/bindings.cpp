@@ -1084,7 +1084,7 @@ bool decides_in_python(const std::vector<pt::ExpandedSweep>& sweeps, bool factor
   for (const pt::ExpandedSweep& s : sweeps) {
     for (const pt::SweepPoint& p : s.points) {
       if (scripted(static_cast<std::size_t>(p.scenario.controller.algorithm))) return true;
-      for (int robot = 1; robot < p.scenario.team.count; ++robot) {
+      for (int robot = 0; robot < p.scenario.team.count; ++robot) {
         const std::string own = pt::own_algorithm(p.scenario, robot);
         if (!own.empty() && scripted(registry.find(own))) return true;
       }

@@ -23,7 +23,7 @@ import time
 import traceback
 from multiprocessing.connection import wait
 
-__all__ = ["ProcessPool", "RemoteTraceback", "WorkerError"]
+__all__ = ["ProcessPool", "RemoteTraceback", "WorkerError", "can_fork"]
 
 # seconds that groups already running may take to finish once the pool is stopped (Ctrl-C), as
 # the MPI coordinator waits for the ranks' last rows; then their workers are ended
@@ -31,6 +31,12 @@ STOP_GRACE = 0.5
 
 # the first byte of a worker's message: rows (encode_rows), or an error (pickled)
 _ROWS, _ERROR = b"R", b"E"
+
+
+def can_fork():
+    """Whether this platform forks processes (Linux, macOS; not Windows): without it, every run
+    stays in the calling process."""
+    return "fork" in multiprocessing.get_all_start_methods()
 
 
 class RemoteTraceback(Exception):
@@ -96,7 +102,7 @@ class ProcessPool:
         rows = []
         try:
             self._gather(rows, timeout)
-        except KeyboardInterrupt as e:
+        except BaseException as e:  # noqa: BLE001 -- Ctrl-C, or what else a signal handler raises
             # why: raised once the running jobs have sent their rows (finish), so that a sweep
             # keeps the runs finished before, as its threads do
             self._record(e, None)

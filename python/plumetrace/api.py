@@ -181,6 +181,7 @@ def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, override
     Ctrl-C, or an exception a controller raises, stops the sweep: runs not yet started are
     dropped and the exception is raised here with the rows finished before it as its
     ``partial_rows`` attribute (SweepRows)."""
+    from ._workers import can_fork
     from .sweeps import sweep_spec
 
     runs = _whole("runs", runs, 0, 2**31 - 1)
@@ -190,7 +191,7 @@ def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, override
     try:
         out = _core.sweep(spec, settings, runs, _whole("threads", threads, 0, MAX_THREADS),
                           _flag("share_plumes", share_plumes), controller,
-                          _flag("processes", processes))
+                          _flag("processes", processes) and can_fork())
     except BaseException as e:
         partial = getattr(e, "partial_rows", None)
         if isinstance(partial, dict):

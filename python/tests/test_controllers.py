@@ -79,14 +79,13 @@ def test_a_python_controller_sweep_in_worker_processes_equals_one_process_bit_fo
     base = pt.Scenario(robot__start_x=4.0, supervisor__timeout=30.0)
     axes = {"controller.algorithm": ["py-surge-cast", "surge-cast"],
             "wind_sensor.sigma_a": [0.0, 0.3]}
-    one, two = (pt.sweep(axes, runs=3, base=base, threads=n) for n in (1, 2))
+    one, two = (pt.sweep(axes, runs=2, base=base, threads=n) for n in (1, 2))
     _same_columns(one, two)
     assert set(one["outcome"]) == {"success", "timeout"}
     team = base.copy()
     team.update({"team.count": 2, "member.1.controller.algorithm": "py-surge-cast"})
-    axis = {"wind_sensor.sigma_a": [0.0, 0.3]}
-    _same_columns(pt.sweep(axis, runs=2, base=team, threads=1),
-                  pt.sweep(axis, runs=2, base=team, threads=2))
+    _same_columns(pt.sweep({"wind_sensor.sigma_a": [0.3]}, runs=2, base=team, threads=1),
+                  pt.sweep({"wind_sensor.sigma_a": [0.3]}, runs=2, base=team, threads=2))
     # a factory's controllers are built in the workers, two of them, and not here
     built = tmp_path / "built.txt"
 
@@ -95,14 +94,15 @@ def test_a_python_controller_sweep_in_worker_processes_equals_one_process_bit_fo
             f.write(f"{os.getpid()}\n")
         return example.SurgeCast({"d_cast": 0.27, "d_lost": 0.614}, rng)
 
-    rows = {n: pt.sweep(axis, runs=3, base=base, threads=n, controller=factory) for n in (2, 1)}
+    axis = {"wind_sensor.sigma_a": [0.0, 0.3]}
+    rows = {n: pt.sweep(axis, runs=2, base=base, threads=n, controller=factory) for n in (2, 1)}
     _same_columns(rows[1], rows[2])
     pids = [int(p) for p in built.read_text().split()]
-    assert len(pids) == 12 and pids[6:] == [os.getpid()] * 6
-    assert len(set(pids[:6])) == 2 and os.getpid() not in pids[:6]
+    assert len(pids) == 8 and pids[4:] == [os.getpid()] * 4
+    assert len(set(pids[:4])) == 2 and os.getpid() not in pids[:4]
     # processes=False keeps them here
     built.unlink()
-    _same_columns(rows[1], pt.sweep(axis, runs=3, base=base, threads=2, controller=factory,
+    _same_columns(rows[1], pt.sweep(axis, runs=2, base=base, threads=2, controller=factory,
                                     processes=False))
     assert set(built.read_text().split()) == {str(os.getpid())}
 

@@ -93,6 +93,7 @@ def benchmark(suite=None, controllers=(), tasks=(), only=False, runs=0, threads=
     or a shard what was run (out, store, digest, counts). A stopped benchmark (Ctrl-C) keeps
     every finished run: calling again computes only what is missing."""
     from .. import _core
+    from .._workers import can_fork
     from ..api import _config_value, _dotted, _flag, _whole, MAX_THREADS
 
     if progress is not None and not callable(progress):
@@ -114,7 +115,8 @@ def benchmark(suite=None, controllers=(), tasks=(), only=False, runs=0, threads=
                            _whole("threads", threads, 0, MAX_THREADS), bool(share_plumes),
                            os.fspath(out) if out is not None else "",
                            os.fspath(store) if store is not None else "", bool(fresh),
-                           shard or "", files, _flag("processes", processes), progress)
+                           shard or "", files, _flag("processes", processes) and can_fork(),
+                           progress)
     if not leaderboard or done["shard"]:
         return done
     from .leaderboard import write_leaderboard

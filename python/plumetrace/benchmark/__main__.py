@@ -87,8 +87,8 @@ def _clock(seconds):
 
 
 def _controller_traceback(error):
-    """The traceback of `error` as text where a controller raised it (in a worker process, or
-    through a file outside this package), else None."""
+    """The traceback of `error`, raised by benchmark(), as text where a controller raised it (in
+    a worker process, or in a file outside this package), else None."""
     if isinstance(error.__cause__, RemoteTraceback):
         return error.__cause__.text
     for frame in traceback.extract_tb(error.__traceback__):
@@ -113,6 +113,16 @@ def main(argv=None):
                              store=args.store, fresh=args.fresh, shard=args.shard,
                              overrides=_sets(args.sets), share_plumes=not args.no_share_plumes,
                              leaderboard=False, progress=bar)
+        except Exception as e:
+            bar.finish()
+            text = _controller_traceback(e)
+            if text is None:
+                raise
+            sys.stderr.write(text)
+            print(f"plumetrace: error: a controller raised {type(e).__name__}: {e} (traceback "
+                  "above); the runs finished before it are in the store: run the same command "
+                  "again once it is fixed", file=sys.stderr)
+            return 2
         finally:
             bar.finish()
         print(f"{done['total']} runs ({done['computed']} computed now, {done['skipped']} from "
@@ -134,16 +144,7 @@ def main(argv=None):
         print("plumetrace: interrupted: the runs finished are in the store; run the same "
               "command again to compute the rest", file=sys.stderr)
         return 130
-    except Exception as e:
-        text = _controller_traceback(e)
-        if text is not None:
-            sys.stderr.write(text)
-            print(f"plumetrace: error: a controller raised {type(e).__name__}: {e} (traceback "
-                  "above); the runs finished before it are in the store: run the same command "
-                  "again once it is fixed", file=sys.stderr)
-            return 2
-        if not isinstance(e, (ValueError, OSError)):
-            raise
+    except (ValueError, OSError) as e:
         print(f"plumetrace: error: {e}", file=sys.stderr)
         return exit_status(e)
 

@@ -174,9 +174,9 @@ def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, override
     register_controller), the runs go to `threads` worker processes forked from this one (0:
     one per core), each deciding in its own interpreter, with the same rows, bit for bit, as one
     process; `processes=False` keeps them in this process, where a Python controller decides one
-    step at a time whatever `threads` says (docs/python.md, "Python controllers on every
-    core"). A worker's objects are its own: what a controller changes outside itself (a list
-    it appends to) is not seen here.
+    step at a time whatever `threads` says (docs/python.md, "On every core: worker processes").
+    A worker's objects are its own: what a controller changes outside itself (a list it appends
+    to) is not seen here.
 
     Ctrl-C, or an exception a controller raises, stops the sweep: runs not yet started are
     dropped and the exception is raised here with the rows finished before it as its

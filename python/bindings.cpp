@@ -492,6 +492,31 @@ class StepWindProbe {
   pt::WindProbe* probe_;
 };
 
+// Gives a thread the interpreter has not seen (a worker thread of run_tasks) one thread state
+// for the rest of its life, made here with the GIL released again. why: pybind's
+// gil_scoped_acquire on such a thread makes a thread state and deletes it when it lets go, and a
+// Python controller takes the GIL for every decision: that cost a sweep's thread about 60% more
+// CPU than the same runs on the main thread (docs/performance.md, "Python controllers on every
+// core"). The state goes when the thread ends (run_tasks joins its threads within the call).
+void keep_thread_state() {
+  struct Kept {
+    PyGILState_STATE gil = PyGILState_Ensure();
+    PyThreadState* state = PyEval_SaveThread();
+    ~Kept() {
+      // why: a thread ending while the interpreter finalises must not take the GIL
+#if PY_VERSION_HEX >= 0x030D0000
+      if (Py_IsFinalizing()) return;
+#else
+      if (_Py_IsFinalizing()) return;
+#endif
+      PyEval_RestoreThread(state);
+      PyGILState_Release(gil);
+    }
+  };
+  thread_local std::unique_ptr<Kept> kept;
+  if (!kept && PyGILState_GetThisThreadState() == nullptr) kept = std::make_unique<Kept>();
+}
+
 // A controller written in Python: an object with step(observation, wind) -> Command and
 // optional state() -> str, losses() -> int, reads (names, kReadNames) and snapshot() -> dict.
 // Calls take the GIL; `stop` (may be null), set when the caller is interrupted, ends a run at
@@ -511,6 +536,7 @@ class PyController : public pt::Controller {
 
   pt::Command step(const pt::Observation& obs, pt::WindProbe& wind) override {
     if (stop_ != nullptr && stop_->load()) throw Interrupted();
+    keep_thread_state();
     py::gil_scoped_acquire gil;
     py::object probe = py::cast(StepWindProbe(&wind));
     py::object command;

@@ -75,8 +75,10 @@ class ProcessPool:
         context = multiprocessing.get_context("fork")
         # why: a worker inherits what this process has not written yet, and would write it again
         for stream in (sys.stdout, sys.stderr):
-            if stream is not None:
+            try:
                 stream.flush()
+            except (AttributeError, OSError, ValueError):  # none, or closed
+                pass
         try:
             for _ in range(processes):
                 mine, theirs = context.Pipe()

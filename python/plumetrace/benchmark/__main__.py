@@ -27,7 +27,9 @@ def _parser():
     p.add_argument("--only", action="store_true", help="run only the --controller ones")
     p.add_argument("--task", action="append", default=[], help="run only this task (repeatable)")
     p.add_argument("--runs", type=int, default=0, help="runs per controller and task")
-    p.add_argument("--threads", type=int, default=0, help="worker threads (default: all cores)")
+    p.add_argument("--threads", type=int, default=0,
+                   help="worker processes with a controller written in Python, else threads "
+                        "(default: all cores)")
     p.add_argument("--store", help="results store (default: OUT/results.sqlite)")
     p.add_argument("--out", help="output folder (default: out/NAME)")
     p.add_argument("--set", action="append", default=[], dest="sets",

@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <cctype>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -35,6 +37,7 @@
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/evidence.hpp"
 #include "plumetrace/experiment/stats.hpp"
@@ -489,6 +492,31 @@ class StepWindProbe {
   pt::WindProbe* probe_;
 };
 
+// Gives a thread the interpreter has not seen (a worker thread of run_tasks) one thread state
+// for the rest of its life, made here with the GIL released again. why: pybind's
+// gil_scoped_acquire on such a thread makes a thread state and deletes it when it lets go, and a
+// Python controller takes the GIL for every decision: that cost a sweep's thread about 60% more
+// CPU than the same runs on the main thread (docs/performance.md, "Python controllers on every
+// core"). The state goes when the thread ends (run_tasks joins its threads within the call).
+void keep_thread_state() {
+  struct Kept {
+    PyGILState_STATE gil = PyGILState_Ensure();
+    PyThreadState* state = PyEval_SaveThread();
+    ~Kept() {
+      // why: a thread ending while the interpreter finalises must not take the GIL
+#if PY_VERSION_HEX >= 0x030D0000
+      if (Py_IsFinalizing()) return;
+#else
+      if (_Py_IsFinalizing()) return;
+#endif
+      PyEval_RestoreThread(state);
+      PyGILState_Release(gil);
+    }
+  };
+  thread_local std::unique_ptr<Kept> kept;
+  if (!kept && PyGILState_GetThisThreadState() == nullptr) kept = std::make_unique<Kept>();
+}
+
 // A controller written in Python: an object with step(observation, wind) -> Command and
 // optional state() -> str, losses() -> int, reads (names, kReadNames) and snapshot() -> dict.
 // Calls take the GIL; `stop` (may be null), set when the caller is interrupted, ends a run at
@@ -508,6 +536,7 @@ class PyController : public pt::Controller {
 
   pt::Command step(const pt::Observation& obs, pt::WindProbe& wind) override {
     if (stop_ != nullptr && stop_->load()) throw Interrupted();
+    keep_thread_state();
     py::gil_scoped_acquire gil;
     py::object probe = py::cast(StepWindProbe(&wind));
     py::object command;
@@ -966,17 +995,23 @@ void attach(const py::handle& error, const char* name, const py::object& value) 
 
 // Ctrl-C while C++ threads run without the GIL: Python sees a signal only when a thread that
 // holds the GIL looks, so the caller's progress callback looks, and a raising handler stops the
-// work; `signal` then holds the handler's error for the caller to raise.
+// work; `signal` then holds the handler's error for the caller to raise. `report` (None for
+// none) is called with (runs done, runs to do, seconds) at each progress call; its error stops
+// the work as a signal's does.
 struct SignalWatch {
   std::atomic<bool> stop{false};
   std::unique_ptr<py::error_already_set> signal;
+  py::object report = py::none();
 
   std::function<void(const pt::Progress&)> on_progress() {
-    return [this](const pt::Progress&) {
+    return [this](const pt::Progress& p) {
       if (stop) return;
       py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() != 0) {
-        signal = std::make_unique<py::error_already_set>();
+      try {
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!report.is_none()) report(p.done, p.total, p.elapsed);
+      } catch (py::error_already_set& e) {
+        signal = std::make_unique<py::error_already_set>(std::move(e));
         stop = true;
       }
     };
@@ -1064,12 +1099,171 @@ py::list export_sweep_store(const py::object& spec, const py::list& overrides,
   return points;
 }
 
-// every run of a sweep file, in C++ threads without the GIL; rows sorted by (point, trial, agent).
-// Ctrl-C (any Python signal handler that raises) or an error of a run (a Python controller's
-// exception) stops it: runs not started are dropped, the error is raised here, and the rows
-// finished before it ride on the exception as `partial_rows` (name, columns)
+// Whether a run of the campaign decides in Python: a controller factory is given from Python, or
+// a robot of some point runs a controller registered from Python.
+bool decides_in_python(const std::vector<pt::ExpandedSweep>& sweeps, bool factory) {
+  if (factory) return true;
+  const pt::ControllerRegistry& registry = pt::controller_registry();
+  const auto scripted = [&](std::size_t index) {
+    return index < registry.size() && registry[index].defaults.holds<ScriptedParams>();
+  };
+  for (const pt::ExpandedSweep& s : sweeps) {
+    for (const pt::SweepPoint& p : s.points) {
+      if (scripted(static_cast<std::size_t>(p.scenario.controller.algorithm))) return true;
+      for (int robot = 0; robot < p.scenario.team.count; ++robot) {
+        const std::string own = pt::own_algorithm(p.scenario, robot);
+        if (!own.empty() && scripted(registry.find(own))) return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The worker processes of process_runner: a plumetrace._workers.ProcessPool forked from this
+// process, each worker computing the plume groups handed to it (encode_groups) on one thread
+// and sending back their rows (encode_rows, doubles as their bits). Ended, every worker stopped
+// and reaped, when this goes, however the campaign ends. Made and used without the GIL.
+class WorkerProcesses {
+ public:
+  WorkerProcesses(const std::vector<pt::ExpandedSweep>& sweeps, pt::ControllerFactory factory,
+                  const std::vector<pt::TaskGroup>& groups, std::size_t processes) {
+    // why: a worker is a fork of this process, so it holds the campaign and the registered
+    // Python controllers already; its own copy of the campaign outlives this call in any case
+    auto campaign = std::make_shared<const std::vector<pt::ExpandedSweep>>(sweeps);
+    py::gil_scoped_acquire gil;
+    py::cpp_function work([campaign, factory](const py::bytes& job) {
+      const std::vector<pt::TaskGroup> jobs = pt::decode_groups(bytes_of(job));
+      std::vector<pt::RunRow> rows;
+      {
+        py::gil_scoped_release release;
+        for (const pt::TaskGroup& group : jobs) {
+          std::vector<pt::RunRow> done = pt::run_group(*campaign, group, factory);
+          rows.insert(rows.end(), done.begin(), done.end());
+        }
+      }
+      const std::vector<char> out = pt::encode_rows(rows);
+      return py::bytes(out.data(), out.size());
+    });
+    py::list jobs;
+    for (const pt::TaskGroup& group : groups) {
+      const std::vector<char> job = pt::encode_groups({group});
+      jobs.append(py::bytes(job.data(), job.size()));
+    }
+    pool_ = py::module_::import("plumetrace._workers").attr("ProcessPool")(work, jobs, processes);
+  }
+  ~WorkerProcesses() {
+    py::gil_scoped_acquire gil;
+    try {
+      pool_.attr("close")();
+    } catch (py::error_already_set& e) {
+      e.discard_as_unraisable("closing the worker processes");
+    }
+    pool_ = py::object();
+  }
+  WorkerProcesses(const WorkerProcesses&) = delete;
+  WorkerProcesses& operator=(const WorkerProcesses&) = delete;
+
+  /// The rows finished within `timeout` (s), and whether every worker is idle (nothing left, or
+  /// stopped); `stop` hands out no further group.
+  std::pair<std::vector<pt::RunRow>, bool> take(double timeout, bool stop) {
+    std::vector<std::vector<char>> parts;
+    bool idle = false;
+    {
+      py::gil_scoped_acquire gil;
+      const py::tuple got = pool_.attr("take")(timeout, stop);
+      for (const py::handle part : got[0].cast<py::list>()) {
+        parts.push_back(bytes_of(py::reinterpret_borrow<py::bytes>(part)));
+      }
+      idle = got[1].cast<bool>();
+    }
+    std::vector<pt::RunRow> rows;
+    for (const auto& part : parts) {
+      std::vector<pt::RunRow> decoded = pt::decode_rows(part);
+      rows.insert(rows.end(), decoded.begin(), decoded.end());
+    }
+    return {std::move(rows), idle};
+  }
+
+  /// Raises the first error of a worker (a controller's exception, with its traceback) or of
+  /// this process (Ctrl-C while waiting), once the pool is idle.
+  void finish() {
+    py::gil_scoped_acquire gil;
+    pool_.attr("finish")();
+  }
+
+ private:
+  static std::vector<char> bytes_of(const py::bytes& b) {
+    char* data = nullptr;
+    Py_ssize_t size = 0;
+    if (PyBytes_AsStringAndSize(b.ptr(), &data, &size) != 0) throw py::error_already_set();
+    return {data, data + size};
+  }
+
+  py::object pool_;
+};
+
+// A TaskRunner for a campaign that decides in Python: its plume groups (split as run_tasks
+// splits them) computed in `processes` worker processes, so that each decides in its own
+// interpreter instead of every run waiting for this one's GIL. The rows are run_tasks' rows,
+// bit for bit (each run is a pure function of its point and trial; docs/python.md). With one
+// process, or one group, it is run_tasks on one thread, here.
+pt::TaskRunner process_runner(int processes) {
+  return [processes](const std::vector<pt::ExpandedSweep>& sweeps,
+                     const std::vector<pt::RunTask>& tasks, const pt::CampaignOptions& options,
+                     const pt::RowSink& sink) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    const std::vector<pt::TaskGroup> groups =
+        pt::split_groups(pt::plume_groups(sweeps, tasks, options.share_plumes),
+                         2 * static_cast<std::size_t>(processes));
+    const std::size_t workers = std::min(static_cast<std::size_t>(processes), groups.size());
+    if (workers <= 1) {
+      pt::CampaignOptions one = options;
+      one.threads = 1;
+      return pt::run_tasks(sweeps, tasks, one, sink);
+    }
+    WorkerProcesses pool(sweeps, options.make_controller, groups, workers);
+    pt::CampaignResult result;
+    result.total = static_cast<std::int64_t>(tasks.size());
+    for (;;) {
+      const bool stop = options.stop != nullptr && options.stop->load();
+      auto [rows, idle] = pool.take(options.progress_interval, stop);
+      if (!rows.empty()) {
+        sink(rows);
+        result.computed += std::count_if(rows.begin(), rows.end(),
+                                         [](const pt::RunRow& r) { return r.agent == 0; });
+      }
+      if (options.on_progress) options.on_progress({result.computed, result.total, seconds()});
+      if (idle) break;
+    }
+    pool.finish();
+    result.interrupted = result.computed < result.total;
+    result.elapsed = seconds();
+    return result;
+  };
+}
+
+// The runner of a campaign from Python: worker processes when `processes` is allowed, more
+// than one is asked for (`threads`, 0 for every core) and a run decides in Python; else none
+// (run_tasks: the threads of this process).
+pt::TaskRunner python_runner(const std::vector<pt::ExpandedSweep>& sweeps, bool factory,
+                             int threads, bool processes) {
+  const int count =
+      threads > 0 ? threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (!processes || count <= 1 || !decides_in_python(sweeps, factory)) return {};
+  return process_runner(count);
+}
+
+// every run of a sweep file, in C++ threads without the GIL, or with a controller written in
+// Python and `processes`, in worker processes (python_runner); rows sorted by (point, trial,
+// agent). Ctrl-C (any Python signal handler that raises) or an error of a run (a Python
+// controller's exception) stops it: runs not started are dropped, the error is raised here, and the
+// rows finished before it ride on the exception as `partial_rows` (name, columns)
 py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int threads,
-               bool share_plumes, py::object controller_factory) {
+               bool share_plumes, py::object controller_factory, bool processes) {
   if (runs < 0) {
     throw pt::ConfigError("runs: must be >= 0 (0: the sweep file's; got " + std::to_string(runs) +
                           ")");
@@ -1091,6 +1285,8 @@ py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int 
         " a Python sweep holds in memory; use plumetrace sweep --store for a larger campaign");
   }
   const std::vector<pt::RunTask> tasks = pt::missing_runs(sweeps, {}, runs);
+  const pt::TaskRunner runner =
+      python_runner(sweeps, !controller_factory.is_none(), threads, processes);
   SignalWatch watch;
   std::atomic<bool>& stop = watch.stop;
   std::unique_ptr<py::error_already_set>& signal = watch.signal;
@@ -1106,9 +1302,10 @@ py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int 
     const RegistryReader reading;
     py::gil_scoped_release release;
     try {
-      pt::run_tasks(sweeps, tasks, options, [&rows](const std::vector<pt::RunRow>& batch) {
+      const pt::RowSink sink = [&rows](const std::vector<pt::RunRow>& batch) {
         rows.insert(rows.end(), batch.begin(), batch.end());
-      });
+      };
+      runner ? runner(sweeps, tasks, options, sink) : pt::run_tasks(sweeps, tasks, options, sink);
     } catch (...) {
       failure = std::current_exception();
     }
@@ -1136,16 +1333,19 @@ py::dict sweep(const py::object& spec, const py::list& overrides, int runs, int 
 }
 
 // A benchmark (docs/benchmark.md) into a results store, as `plumetrace benchmark` plans it: in
-// C++ threads without the GIL (a Python controller takes it for each of its steps), then, for a
+// C++ threads without the GIL (a Python controller takes it for each of its steps), or with a
+// controller written in Python and `processes`, in worker processes (python_runner); then, for a
 // whole campaign, the manifest and the exports. Ctrl-C (a raising signal handler) stops it
 // between runs and is raised here; every run finished is in the store, and calling again
-// computes only what is missing. `python_files` maps a controller written in Python to its file.
+// computes only what is missing. `python_files` maps a controller written in Python to its file;
+// `progress` (None for none) is called with (runs done, runs to do, seconds) every 0.25 s.
 py::dict benchmark(const std::string& suite_path, const std::vector<std::string>& controllers,
                    bool only, const std::vector<std::string>& tasks, int runs,
                    const py::list& overrides, int threads, bool share_plumes,
                    const std::string& out_option, const std::string& store_option, bool fresh,
                    const std::string& shard_option,
-                   const std::map<std::string, std::string>& python_files) {
+                   const std::map<std::string, std::string>& python_files, bool processes,
+                   py::object progress) {
   if (runs < 0) throw pt::ConfigError("runs: must be >= 0 (0: the suite's)");
   if (threads < 0 || threads > pt::kMaxThreads) {
     throw pt::ConfigError("threads: must be 0 (all cores) to " + std::to_string(pt::kMaxThreads));
@@ -1159,9 +1359,8 @@ py::dict benchmark(const std::string& suite_path, const std::vector<std::string>
   const pt::BenchmarkPlan plan = pt::plan_benchmark(pt::read_suite_file(suite_path), choice);
   const pt::Shard shard = shard_option.empty() ? pt::Shard{} : pt::parse_shard(shard_option);
   pt::check_campaign(plan.sweeps, 0);
-  const std::string out = out_option.empty()
-                              ? pt::default_output_folder(plan.suite.name, suite_path)
-                              : out_option;
+  const std::string out =
+      out_option.empty() ? pt::default_output_folder(plan.suite.name, suite_path) : out_option;
   const std::string store_path =
       store_option.empty() ? pt::default_store_path(out, shard) : store_option;
   if (shard.count <= 1) pt::make_output_folder(out, out_option.empty() ? "out/NAME" : "out");
@@ -1169,6 +1368,7 @@ py::dict benchmark(const std::string& suite_path, const std::vector<std::string>
   if (!folder.empty()) pt::make_output_folder(folder.string(), "the folder of store", false);
   pt::Store store(store_path, plan.sweeps, pt::version(), fresh);
   SignalWatch watch;
+  watch.report = std::move(progress);
   pt::CampaignOptions options;
   options.threads = threads;
   options.share_plumes = share_plumes;
@@ -1180,7 +1380,8 @@ py::dict benchmark(const std::string& suite_path, const std::vector<std::string>
     const RegistryReader reading;
     py::gil_scoped_release release;
     try {
-      result = pt::run_campaign(plan.sweeps, store, 0, options, shard);
+      result = pt::run_campaign(plan.sweeps, store, 0, options, shard,
+                                python_runner(plan.sweeps, false, threads, processes));
     } catch (...) {
       failure = std::current_exception();
     }
@@ -1610,11 +1811,13 @@ PYBIND11_MODULE(_core, m) {
         py::arg("trace"), py::arg("snapshot_interval"), py::arg("controller_factory"),
         py::arg("view") = std::nullopt);
   m.def("sweep", &sweep, py::arg("sweep"), py::arg("overrides"), py::arg("runs"),
-        py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"));
+        py::arg("threads"), py::arg("share_plumes"), py::arg("controller_factory"),
+        py::arg("processes") = false);
   m.def("benchmark", &benchmark, py::arg("suite"), py::arg("controllers"), py::arg("only"),
         py::arg("tasks"), py::arg("runs"), py::arg("overrides"), py::arg("threads"),
         py::arg("share_plumes"), py::arg("out"), py::arg("store"), py::arg("fresh"),
-        py::arg("shard"), py::arg("python_files"),
+        py::arg("shard"), py::arg("python_files"), py::arg("processes") = false,
+        py::arg("progress") = py::none(),
         "a benchmark suite's runs into a results store, its manifest and exports "
         "(plumetrace.benchmark)");
   m.def("export_store", &export_sweep_store, py::arg("sweep"), py::arg("overrides"),

@@ -159,7 +159,8 @@ def run(scenario=None, algorithm=None, seed=1, trial=0, trace=True, snapshot_int
 
 
 def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, overrides=None,
-          base=None, seed=None, name=None, title=None, fixed=None, labels=None, **kwargs):
+          base=None, seed=None, name=None, title=None, fixed=None, labels=None, processes=True,
+          **kwargs):
     """Every run of a sweep, in C++ threads with the GIL released. `sweep`: a sweep file (the
     format `plumetrace sweep` reads), or a dict of axes ``{dotted key: values}`` (the first key
     varying slowest) on the base scenario `base` (a Scenario, a scenario file or None), with
@@ -169,9 +170,18 @@ def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, override
     `controller`: as in run(). Returns SweepRows, one row per robot of each run (column
     ``agent``: its index in the team, 0 for a robot alone), sorted by (point, trial, agent).
 
+    When a controller written in Python decides (`controller`, or one registered with
+    register_controller), the runs go to `threads` worker processes forked from this one (0:
+    one per core), each deciding in its own interpreter, with the same rows, bit for bit, as one
+    process; `processes=False` keeps them in this process, where a Python controller decides one
+    step at a time whatever `threads` says (docs/python.md, "On every core: worker processes").
+    A worker's objects are its own: what a controller changes outside itself (a list it appends
+    to) is not seen here.
+
     Ctrl-C, or an exception a controller raises, stops the sweep: runs not yet started are
     dropped and the exception is raised here with the rows finished before it as its
     ``partial_rows`` attribute (SweepRows)."""
+    from ._workers import can_fork
     from .sweeps import sweep_spec
 
     runs = _whole("runs", runs, 0, 2**31 - 1)
@@ -180,7 +190,8 @@ def sweep(sweep, runs=0, threads=0, share_plumes=True, controller=None, override
                 for k, v in _dotted({**(overrides or {}), **kwargs}).items()]
     try:
         out = _core.sweep(spec, settings, runs, _whole("threads", threads, 0, MAX_THREADS),
-                          _flag("share_plumes", share_plumes), controller)
+                          _flag("share_plumes", share_plumes), controller,
+                          _flag("processes", processes) and can_fork())
     except BaseException as e:
         partial = getattr(e, "partial_rows", None)
         if isinstance(partial, dict):

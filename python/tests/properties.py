@@ -377,12 +377,16 @@ def check_runs_with_any_controller_give_a_result_or_its_error(plan, factory_kind
             assert r["declaration_error"] is not None
 
 
+# why: worker processes in one example of four, as each costs a fork of this interpreter
 @bounded(300)
-@given(plans, factories, st.integers(1, 3), st.booleans())
-def check_sweeps_with_any_controller_give_rows_or_its_error(plan, factory_kind, threads, share):
-    show("sweep controller", (plan, factory_kind, threads, share))
+@given(plans, factories, st.integers(1, 3), st.booleans(),
+       st.sampled_from([False, False, False, True]))
+def check_sweeps_with_any_controller_give_rows_or_its_error(plan, factory_kind, threads, share,
+                                                            processes):
+    show("sweep controller", (plan, factory_kind, threads, share, processes))
     rows = _check_outcome(lambda f: pt.sweep(PATHS[0], runs=2, threads=threads,
-                                             share_plumes=share, controller=f),
+                                             share_plumes=share, controller=f,
+                                             processes=processes),
                           plan, factory_kind)
     if rows is not None:
         assert len(rows) == 4

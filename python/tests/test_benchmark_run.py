@@ -1,10 +1,13 @@
 """Benchmarks run from Python and with controllers written in Python (plumetrace.benchmark,
 docs/benchmark.md): the example controller enters in one call and gives the built-in's results,
-and a file that defines no controller is refused naming it."""
+a file that defines no controller is refused naming it, and worker processes write what one
+process writes."""
 
 import csv
 import json
+import multiprocessing
 import os
+import sqlite3
 import subprocess
 from pathlib import Path
 
@@ -26,6 +29,67 @@ def pt():
 def _rows(out):
     with open(Path(out) / "runs.csv", newline="") as f:
         return list(csv.DictReader(f))
+
+
+# the files a benchmark writes besides its store
+EXPORTS = ("benchmark.json", "results.json", "runs.csv", "summary.csv", "teams.csv")
+
+
+def _store(path):
+    """What a results store holds, but its epoch (a random id of each store)."""
+    with sqlite3.connect(path) as db:
+        tables = {t: db.execute(f"SELECT * FROM {t} ORDER BY 1, 2, 3").fetchall()
+                  for t in ("points", "runs")}
+        tables["meta"] = db.execute(
+            "SELECT * FROM meta WHERE key != 'epoch' ORDER BY key").fetchall()
+    return tables
+
+
+def _same_results(a, b):
+    for name in EXPORTS:
+        assert (a / name).read_bytes() == (b / name).read_bytes(), name
+    assert _store(a / "results.sqlite") == _store(b / "results.sqlite")
+
+
+def test_two_worker_processes_write_what_one_process_writes(pt, tmp_path):
+    # the example beside the suite's built-in controllers, on the same plumes
+    done = {n: pt.benchmark(SUITE, controllers=[EXAMPLE], runs=2, threads=n, out=tmp_path / str(n),
+                            leaderboard=False) for n in (1, 2)}
+    assert done[1]["computed"] == done[2]["computed"] == 12
+    _same_results(tmp_path / "1", tmp_path / "2")
+    assert {r["controller.algorithm"] for r in _rows(tmp_path / "2")} == {
+        "py-surge-cast", "surge-spiral", "crw"}
+
+
+def test_a_benchmark_stopped_in_worker_processes_resumes_to_the_same_results(pt, tmp_path,
+                                                                           monkeypatch):
+    # a controller whose runs take 0.1 s at least while stopped, each run on a plume of its own:
+    # stopped at the first progress report (0.25 s in), two workers have finished at most 2 x 2
+    # of the 8 runs and have 2 more in hand, which they finish
+    slow = tmp_path / "slow.py"
+    slow.write_text(
+        "import os, time\n"
+        "from plumetrace.controllers import Controller\n"
+        "class SlowUpwind(Controller):\n"
+        "    def __init__(self, params, rng):\n"
+        "        super().__init__(params, rng)\n"
+        "        time.sleep(float(os.environ.get('SLOW_UPWIND_DELAY', '0')))\n"
+        "    def step(self, obs, wind):\n"
+        "        return self.go(self.measure_upwind(wind, obs))\n")
+    mine = dict(controllers=[slow], only=True, runs=4, share_plumes=False, leaderboard=False,
+                supervisor__timeout=8.0)
+    pt.benchmark(SUITE, threads=1, out=tmp_path / "one", **mine)
+
+    def stop(done, total, seconds):
+        raise KeyboardInterrupt
+
+    with monkeypatch.context() as m, pytest.raises(KeyboardInterrupt):
+        m.setenv("SLOW_UPWIND_DELAY", "0.1")
+        pt.benchmark(SUITE, threads=2, out=tmp_path / "two", progress=stop, **mine)
+    assert multiprocessing.active_children() == []
+    again = pt.benchmark(SUITE, threads=2, out=tmp_path / "two", **mine)
+    assert 1 <= again["skipped"] <= 6 and again["computed"] == 8 - again["skipped"]
+    _same_results(tmp_path / "one", tmp_path / "two")
 
 
 def test_a_python_controller_enters_beside_the_built_ins_with_their_results(pt, tmp_path):
@@ -109,3 +173,24 @@ def test_compare_through_the_command_refuses_results_of_another_suite(pt, tmp_pa
     same = subprocess.run([CLI, "benchmark", "--compare", str(tmp_path / "a"),
                            str(tmp_path / "a")], capture_output=True, text=True)
     assert same.returncode == 0, same.stderr
+
+
+def test_the_command_reports_a_controller_that_raises_in_a_worker_with_its_traceback(pt, tmp_path):
+    bad = tmp_path / "breaks.py"
+    bad.write_text(
+        "from plumetrace.controllers import Controller\n"
+        "class Breaks(Controller):\n"
+        "    def step(self, obs, wind):\n"
+        "        return self.look(obs)\n"
+        "    def look(self, obs):\n"
+        "        raise LookupError('no plume here')\n")
+    done = subprocess.run([CLI, "benchmark", str(SUITE), "--controller", str(bad), "--only",
+                           "--runs", "2", "--threads", "2", "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True)
+    assert done.returncode == 2, done.stderr
+    # the controller's own traceback, down to its line, then what happened
+    assert f'File "{bad}", line 6, in look' in done.stderr
+    assert done.stderr.rstrip().endswith(
+        "plumetrace: error: a controller raised LookupError: no plume here (traceback above); "
+        "the runs finished before it are in the store: run the same command again once it is "
+        "fixed")

@@ -61,6 +61,51 @@ values = [0.135, 0.27, 0.54]
     assert len({tuple(mine["d_t"][mine["point"] == p]) for p in range(3)}) > 1
 
 
+def _same_columns(a, b):
+    """Whether two sweeps' rows are the same, bit for bit: columns, dtypes and bytes."""
+    assert a.keys() == b.keys()
+    for key in a.keys():
+        x, y = np.asarray(a[key]), np.asarray(b[key])
+        assert x.dtype == y.dtype and x.shape == y.shape, key
+        if x.dtype == object:
+            assert list(x) == list(y), key
+        else:
+            assert x.tobytes() == y.tobytes(), key
+
+
+def test_a_python_controller_sweep_in_worker_processes_equals_one_process_bit_for_bit(tmp_path):
+    # a registered Python controller beside a built-in one on the same plumes, a team whose
+    # second robot runs it, and a factory: two worker processes give the rows of one process
+    base = pt.Scenario(robot__start_x=4.0, supervisor__timeout=30.0)
+    axes = {"controller.algorithm": ["py-surge-cast", "surge-cast"],
+            "wind_sensor.sigma_a": [0.0, 0.3]}
+    one, two = (pt.sweep(axes, runs=2, base=base, threads=n) for n in (1, 2))
+    _same_columns(one, two)
+    assert set(one["outcome"]) == {"success", "timeout"}
+    team = base.copy()
+    team.update({"team.count": 2, "member.1.controller.algorithm": "py-surge-cast"})
+    _same_columns(pt.sweep({"wind_sensor.sigma_a": [0.3]}, runs=2, base=team, threads=1),
+                  pt.sweep({"wind_sensor.sigma_a": [0.3]}, runs=2, base=team, threads=2))
+    # a factory's controllers are built in the workers, two of them, and not here
+    built = tmp_path / "built.txt"
+
+    def factory(scenario, rng):
+        with open(built, "a") as f:
+            f.write(f"{os.getpid()}\n")
+        return example.SurgeCast({"d_cast": 0.27, "d_lost": 0.614}, rng)
+
+    axis = {"wind_sensor.sigma_a": [0.0, 0.3]}
+    rows = {n: pt.sweep(axis, runs=2, base=base, threads=n, controller=factory) for n in (2, 1)}
+    _same_columns(rows[1], rows[2])
+    pids = [int(p) for p in built.read_text().split()]
+    assert len(pids) == 8 and pids[4:] == [os.getpid()] * 4
+    assert len(set(pids[:4])) == 2 and os.getpid() not in pids[:4]
+    # processes=False keeps them here
+    built.unlink()
+    _same_columns(rows[1], pt.sweep(axis, runs=2, base=base, threads=2, controller=factory,
+                                    processes=False))
+    assert set(built.read_text().split()) == {str(os.getpid())}
+
 # a controller of one's own with keys of its own: it zigzags upwind, legs of `leg` metres, and
 # gives up after `turns` legs
 def _zigzag_class(seen):

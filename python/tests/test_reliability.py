@@ -348,7 +348,8 @@ def test_bad_losses_and_factories_are_type_errors_naming_them():
 
 def test_ctrl_c_stops_a_sweep_with_keyboard_interrupt_and_keeps_the_finished_runs(short_sweep):
     # the first controller built sends SIGINT; every run then waits until the handler has run
-    # (up to 10 s): with the signal seen during the sweep, no run starts after it
+    # (up to 10 s): with the signal seen during the sweep, no run starts after it. The threads of
+    # one process (processes=False): a worker process would send the signal to itself
     done = run_isolated("""
         # why: the handler runs on the main thread with the GIL; a long switch interval keeps it
         # there until the sweep has set its stop flag, so no worker starts a run in between
@@ -368,7 +369,8 @@ def test_ctrl_c_stops_a_sweep_with_keyboard_interrupt_and_keeps_the_finished_run
                 handled.wait(10)
                 return Command.abandon()
         try:
-            pt.sweep(SWEEP, runs=4, threads=2, share_plumes=False, controller=Slow)
+            pt.sweep(SWEEP, runs=4, threads=2, share_plumes=False, controller=Slow,
+                     processes=False)
             print("finished")
         except KeyboardInterrupt as e:
             rows = e.partial_rows
@@ -379,3 +381,92 @@ def test_ctrl_c_stops_a_sweep_with_keyboard_interrupt_and_keeps_the_finished_run
     built, kept = int(words[1]), int(words[2])
     assert 1 <= built <= 2  # of 8 runs, only those the two threads started before the signal
     assert kept <= built and words[3] in ("[]", "['gave_up']")
+
+
+def test_ctrl_c_stops_worker_processes_and_reaps_them(short_sweep, tmp_path):
+    # two workers each start a run that never ends; once both have started, Ctrl-C here: the
+    # sweep raises KeyboardInterrupt after its grace and leaves no worker process behind
+    done = run_isolated("""
+        import multiprocessing, time
+        started = sys.argv[2]
+        class Stuck:
+            def __init__(self, scenario, rng):
+                with open(started, "a") as f:
+                    f.write(f"{os.getpid()}\\n")
+            def step(self, obs, wind):
+                time.sleep(3600)
+        def interrupt():
+            while len(open(started).read().split()) < 2:
+                time.sleep(0.02)
+            os.kill(os.getpid(), signal.SIGINT)
+        open(started, "w").close()
+        threading.Thread(target=interrupt, daemon=True).start()
+        t = time.monotonic()
+        try:
+            pt.sweep(SWEEP, threads=2, share_plumes=False, controller=Stuck)
+        except KeyboardInterrupt as e:
+            print("interrupted", len(e.partial_rows), f"{time.monotonic() - t:.0f}")
+        pids = [int(p) for p in open(started).read().split()]
+        def gone(pid):
+            try:
+                os.kill(pid, 0)
+            except ProcessLookupError:
+                return True
+            return False
+        try:
+            os.waitpid(-1, os.WNOHANG)
+            children = "children left"
+        except ChildProcessError:
+            children = "no child"
+        print(len(set(pids)), all(map(gone, pids)), children, multiprocessing.active_children())
+    """, short_sweep, tmp_path / "started.txt")
+    lines = done.stdout.strip().splitlines()
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert lines[-2].startswith("interrupted 0 "), lines
+    assert int(lines[-2].split()[2]) < 60  # the stuck runs were ended, not waited for
+    assert lines[-1] == "2 True no child []"
+
+
+# worker processes (a controller written in Python, threads > 1): a worker's error reaches the
+# caller
+
+
+def test_a_worker_process_error_reaches_the_caller_with_the_controller_traceback(short_sweep):
+    done = run_isolated("""
+        from plumetrace._workers import RemoteTraceback, WorkerError
+        class Odd(Exception):  # does not unpickle (two arguments, one given to Exception)
+            def __init__(self, what, where):
+                super().__init__(f"{what} at {where}")
+        def lookup(obs):
+            raise LookupError("no plume here")
+        class Fails:
+            error = "lookup"
+            def __init__(self, scenario, rng):
+                pass
+            def step(self, obs, wind):
+                if self.error == "lookup":
+                    lookup(obs)
+                if self.error == "odd":
+                    raise Odd("odd", "here")
+                os._exit(3)
+        for error in ("lookup", "odd", "exit"):
+            Fails.error = error
+            try:
+                pt.sweep(SWEEP, threads=2, controller=Fails)
+            except (LookupError, WorkerError) as e:
+                cause = e.__cause__
+                # the function the worker's traceback ends in
+                where = cause.text.strip().splitlines()[-2] if cause is not None else "-"
+                print(type(e).__name__, "|", e, "|", isinstance(cause, RemoteTraceback),
+                      "|", where.split(", ")[-1], "|", type(e.partial_rows).__name__)
+    """, short_sweep)
+    assert done.returncode == 0, done.stderr[-3000:]
+    lookup, odd, died = done.stdout.strip().splitlines()[-3:]
+    # the exception itself, its cause the worker's traceback down to the controller's line
+    assert lookup == "LookupError | no plume here | True | in lookup | SweepRows"
+    # one that cannot travel as itself: its type and words, and the same traceback
+    assert odd.startswith("WorkerError | __main__.Odd: odd at here (raised in plumetrace-worker-")
+    assert odd.endswith("| True | in step | SweepRows")
+    # a worker that dies says so
+    assert died.startswith("WorkerError | plumetrace-worker-")
+    assert "ended without a word (exit status 3) | False | - | SweepRows" in died

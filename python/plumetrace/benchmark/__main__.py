@@ -1,11 +1,19 @@
 """python3 -m plumetrace.benchmark [SUITE] [options]: `plumetrace benchmark` with controllers
 written in Python (the command hands itself to this module when a --controller is a .py file).
-Exit status 0, 2 for bad input, 3 when a file cannot be read or written, 130 when stopped."""
+Exit status 0, 2 for bad input or a controller that raised (its traceback printed), 3 when a
+file cannot be read or written, 130 when stopped."""
 
 import argparse
 import sys
+import traceback
+from pathlib import Path
 
 from .._files import exit_status
+from .._workers import RemoteTraceback
+
+# the package's folder: an exception whose traceback passes through no file outside it was not
+# raised by a controller
+_PACKAGE = Path(__file__).resolve().parents[1]
 
 
 def _parser():
@@ -19,7 +27,9 @@ def _parser():
     p.add_argument("--only", action="store_true", help="run only the --controller ones")
     p.add_argument("--task", action="append", default=[], help="run only this task (repeatable)")
     p.add_argument("--runs", type=int, default=0, help="runs per controller and task")
-    p.add_argument("--threads", type=int, default=0, help="worker threads (default: all cores)")
+    p.add_argument("--threads", type=int, default=0,
+                   help="worker processes with a controller written in Python, else threads "
+                        "(default: all cores)")
     p.add_argument("--store", help="results store (default: OUT/results.sqlite)")
     p.add_argument("--out", help="output folder (default: out/NAME)")
     p.add_argument("--set", action="append", default=[], dest="sets",
@@ -47,6 +57,48 @@ def _sets(texts):
     return out
 
 
+class _ProgressBar:
+    """The command's progress line on stderr, as `plumetrace benchmark` draws it (cli/progress.cpp):
+    drawn only where stderr is a terminal."""
+
+    WIDTH = 30
+
+    def __init__(self, label, enabled):
+        self.label, self.enabled, self.drawn = label, enabled, False
+
+    def __call__(self, done, total, seconds):
+        if not self.enabled or total == 0:
+            return
+        filled = int(done / total * self.WIDTH)
+        rate = done / seconds if seconds > 0 else 0.0
+        eta = _clock(round((total - done) / rate)) if rate > 0 else "--:--"
+        sys.stderr.write(f"\r{self.label} [{'#' * filled}{'.' * (self.WIDTH - filled)}] "
+                         f"{done}/{total} runs  {rate:.1f} runs/s  ETA {eta}  ")
+        sys.stderr.flush()
+        self.drawn = True
+
+    def finish(self):
+        if self.drawn:
+            sys.stderr.write("\n")
+        self.drawn = False
+
+
+def _clock(seconds):
+    minutes, s = divmod(seconds, 60)
+    return f"{minutes // 60}:{minutes % 60:02d}:{s:02d}" if minutes >= 60 else f"{minutes}:{s:02d}"
+
+
+def _controller_traceback(error):
+    """The traceback of `error`, raised by benchmark(), as text where a controller raised it (in
+    a worker process, or in a file outside this package), else None."""
+    if isinstance(error.__cause__, RemoteTraceback):
+        return error.__cause__.text
+    for frame in traceback.extract_tb(error.__traceback__):
+        if not Path(frame.filename).resolve().is_relative_to(_PACKAGE):
+            return "".join(traceback.format_exception(error))
+    return None
+
+
 def main(argv=None):
     args = _parser().parse_args(argv)
     if args.compare:
@@ -55,12 +107,26 @@ def main(argv=None):
         return compare(list(args.compare) + (["--allow-runs"] if args.allow_runs else []))
     from .run import benchmark
 
+    bar = _ProgressBar("benchmark", not args.quiet and sys.stderr.isatty())
     try:
-        done = benchmark(args.suite, controllers=args.controller, tasks=args.task,
-                         only=args.only, runs=args.runs, threads=args.threads, out=args.out,
-                         store=args.store, fresh=args.fresh, shard=args.shard,
-                         overrides=_sets(args.sets), share_plumes=not args.no_share_plumes,
-                         leaderboard=False)
+        try:
+            done = benchmark(args.suite, controllers=args.controller, tasks=args.task,
+                             only=args.only, runs=args.runs, threads=args.threads, out=args.out,
+                             store=args.store, fresh=args.fresh, shard=args.shard,
+                             overrides=_sets(args.sets), share_plumes=not args.no_share_plumes,
+                             leaderboard=False, progress=bar)
+        except Exception as e:
+            bar.finish()
+            text = _controller_traceback(e)
+            if text is None:
+                raise
+            sys.stderr.write(text)
+            print(f"plumetrace: error: a controller raised {type(e).__name__}: {e} (traceback "
+                  "above); the runs finished before it are in the store: run the same command "
+                  "again once it is fixed", file=sys.stderr)
+            return 2
+        finally:
+            bar.finish()
         print(f"{done['total']} runs ({done['computed']} computed now, {done['skipped']} from "
               f"the store) in {done['elapsed']:.1f} s; store {done['store']}")
         if done["shard"]:

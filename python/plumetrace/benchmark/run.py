@@ -75,22 +75,30 @@ def load_controllers(path):
 
 def benchmark(suite=None, controllers=(), tasks=(), only=False, runs=0, threads=0, out=None,
               store=None, fresh=False, shard=None, overrides=None, share_plumes=True,
-              leaderboard=True, **kwargs):
+              leaderboard=True, processes=True, progress=None, **kwargs):
     """Runs every chosen controller on every task of `suite` (a suite file; None: the built-in
     plumetrace-core) into a resumable results store and writes the leaderboard, as
     `plumetrace benchmark` does. `controllers`: names of registered controllers or .py files
     (load_controllers), added to the suite's (with `only`, the only ones); `tasks`: the tasks to
-    run (default all); `runs`: runs per cell (0: the suite's); `threads`: 0 for all cores;
-    `out`: the output folder (default out/SUITE-NAME); `store`: the results store (default
-    OUT/results.sqlite, or OUT/part-I-of-N.sqlite for `shard` "I/N"); `fresh` discards the
-    stored runs; `overrides`/keyword arguments set keys of every task (as --set).
+    run (default all); `runs`: runs per cell (0: the suite's); `threads`: 0 for all cores (with a
+    controller written in Python, that many worker processes forked from this one, unless
+    `processes` is False, as in plumetrace.sweep); `out`: the output folder (default
+    out/SUITE-NAME); `store`: the results store (default OUT/results.sqlite, or
+    OUT/part-I-of-N.sqlite for `shard` "I/N"); `fresh` discards the stored runs;
+    `overrides`/keyword arguments set keys of every task (as --set); `progress`: None, or a
+    function ``f(done, total, seconds)`` called every 0.25 s while runs are computed (an
+    exception it raises stops the benchmark and is raised here).
 
     Returns the leaderboard (the dict written to leaderboard.json), or with `leaderboard=False`
     or a shard what was run (out, store, digest, counts). A stopped benchmark (Ctrl-C) keeps
     every finished run: calling again computes only what is missing."""
     from .. import _core
-    from ..api import _config_value, _dotted, _whole, MAX_THREADS
+    from .._workers import can_fork
+    from ..api import _config_value, _dotted, _flag, _whole, MAX_THREADS
 
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a function f(done, total, seconds) or None, got "
+                        f"{type(progress).__name__}")
     names, files = [], {}
     for c in controllers:
         if str(c).endswith(".py"):
@@ -107,7 +115,8 @@ def benchmark(suite=None, controllers=(), tasks=(), only=False, runs=0, threads=
                            _whole("threads", threads, 0, MAX_THREADS), bool(share_plumes),
                            os.fspath(out) if out is not None else "",
                            os.fspath(store) if store is not None else "", bool(fresh),
-                           shard or "", files)
+                           shard or "", files, _flag("processes", processes) and can_fork(),
+                           progress)
     if not leaderboard or done["shard"]:
         return done
     from .leaderboard import write_leaderboard

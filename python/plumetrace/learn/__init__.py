@@ -11,8 +11,17 @@ Submodules: ``policy`` (the features, the network, the policy file and the contr
 ``es`` (the trainer, its command line and its learning-curve plot).
 """
 
-from . import es
 from .policy import ACTIONS, FEATURES, OBSERVE, Learned, Memory, Policy, load_policy, policy_path
 
 __all__ = ["ACTIONS", "FEATURES", "OBSERVE", "Learned", "Memory", "Policy", "es", "load_policy",
            "policy_path"]
+
+
+def __getattr__(name):
+    # why: the trainer is imported on first use, so that `python3 -m plumetrace.learn.es` runs it
+    # as a script without importing it twice
+    if name == "es":
+        import importlib
+
+        return importlib.import_module(".es", __name__)
+    raise AttributeError(f"module 'plumetrace.learn' has no attribute {name!r}")

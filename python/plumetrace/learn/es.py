@@ -25,13 +25,15 @@ import math
 import os
 import time
 from collections import namedtuple
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
 from .policy import OBSERVE, Memory, Policy, forward, features
 
-__all__ = ["TRAIN_TASKS", "Task", "evaluate", "main", "plot_curve", "suite_tasks", "train"]
+__all__ = ["CURVE_COLUMNS", "TRAIN_TASKS", "Task", "evaluate", "main", "plot_curve", "read_curve",
+           "suite_tasks", "train"]
 
 Task = namedtuple("Task", "name scenario overrides")
 Task.__doc__ = """A training task: `name`, `scenario` (a scenario file) and `overrides` (a dict
@@ -196,8 +198,9 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.
     `weight_decay`: the L2 coefficient pulling theta to 0; `policy`: where to start (its
     decision interval, action mode and sizes are kept; default a Policy() with random weights
     from `seed`); `threads`: C++ threads of the vector environments (never change a result);
-    `log`: a CSV path the curve is written to as it grows; `progress`: f(row) called after each
+    `log`: a CSV file (in a folder that exists) the curve is written to after each generation; `progress`: f(row) called after each
     generation. Raises TypeError or ValueError naming the argument."""
+    from .._files import write_whole
     from ..api import _finite_number, _whole
 
     tasks = _tasks(tasks)
@@ -221,17 +224,16 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.
         policy = policy.with_theta(policy.initial(rng))
     members = 2 * pairs + 1
     scenarios = [_scenario(t, window) for t in tasks]
-    envs = [_vector_env(s, policy, groups * members, members, threads) for s in scenarios]
+    # why: the tasks' environments step side by side in Python threads (a step releases the
+    # GIL), each with its share of the C++ threads, so a group per task still uses every core
+    workers = max(1, min(threads or (os.cpu_count() or 1), len(tasks)))
+    inner = max(1, (threads or (os.cpu_count() or 1)) // workers)
+    envs = [_vector_env(s, policy, groups * members, members, inner) for s in scenarios]
+    pool = ThreadPoolExecutor(workers) if workers > 1 else None
     decisions = [_decisions(s, policy, window) for s in scenarios]
     theta = policy.theta.copy()
     adam_m, adam_v = np.zeros_like(theta), np.zeros_like(theta)
     beta1, beta2 = 0.9, 0.999
-    writer, handle = None, None
-    if log is not None:
-        Path(log).parent.mkdir(parents=True, exist_ok=True)
-        handle = open(log, "w", newline="")
-        writer = csv.DictWriter(handle, CURVE_COLUMNS)
-        writer.writeheader()
     curve = []
     start = time.perf_counter()
     try:
@@ -241,10 +243,12 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.
             thetas = np.tile(population, (groups, 1))
             returns = np.zeros(members)
             successes = np.zeros(members)
-            for env, n in zip(envs, decisions):
-                # every member of a group: the same seed (plume, start, noise)
-                seeds = np.repeat(rng.integers(0, 2**62, groups), members)
-                total, success = _rollout(env, policy, thetas, seeds, n)
+            # every member of a group: the same seed (plume, start, noise)
+            jobs = [(env, policy, thetas, np.repeat(rng.integers(0, 2**62, groups), members), n)
+                    for env, n in zip(envs, decisions)]
+            done = (pool.map(_rollout, *zip(*jobs)) if pool is not None else
+                    [_rollout(*job) for job in jobs])
+            for total, success in done:
                 returns += total.reshape(groups, members).mean(axis=0)
                 successes += success.reshape(groups, members).mean(axis=0)
             returns /= len(envs)
@@ -264,22 +268,36 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.
                    "population_success": float(successes[:-1].mean()),
                    "wall_s": time.perf_counter() - start}
             curve.append(row)
-            if writer is not None:
-                writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v)
-                                 for k, v in row.items()})
-                handle.flush()
+            if log is not None:
+                write_whole(log, _curve_csv(curve))
             if progress is not None:
                 progress(row)
     finally:
+        if pool is not None:
+            pool.shutdown()
         for env in envs:
             env.close()
-        if handle is not None:
-            handle.close()
     info = {"trainer": "plumetrace.learn.es", "tasks": [t.name for t in tasks],
             "generations": generations, "pairs": pairs, "groups": groups, "window": window,
             "sigma": sigma, "learning_rate": learning_rate, "weight_decay": weight_decay,
             "seed": seed, "wall_s": round(curve[-1]["wall_s"], 1)}
     return policy.with_theta(theta, info), curve
+
+
+def _curve_csv(curve):
+    lines = [",".join(CURVE_COLUMNS)]
+    for row in curve:
+        lines.append(",".join(f"{row[k]:.6g}" if isinstance(row[k], float) else str(row[k])
+                              for k in CURVE_COLUMNS))
+    return "\n".join(lines) + "\n"
+
+
+def read_curve(path):
+    """A learning curve's CSV (as train() writes it) as a list of dicts of floats."""
+    from .._files import read_input
+
+    text = read_input(path, "learning curve").decode("utf-8")
+    return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(text.splitlines())]
 
 
 def plot_curve(curve, path, title=None, smooth=10):
@@ -291,8 +309,7 @@ def plot_curve(curve, path, title=None, smooth=10):
     import matplotlib.pyplot as plt
 
     if isinstance(curve, (str, os.PathLike)):
-        with open(curve, newline="") as f:
-            curve = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+        curve = read_curve(curve)
     g = np.array([r["generation"] for r in curve])
     wall = np.array([r["wall_s"] for r in curve]) / 60.0
 
@@ -328,7 +345,7 @@ def main(argv=None):
     """The command line (python3 -m plumetrace.learn.es --help)."""
     import argparse
 
-    from .._files import exit_status
+    from .._files import exit_status, output_folder
 
     p = argparse.ArgumentParser(
         prog="python3 -m plumetrace.learn.es",
@@ -353,8 +370,7 @@ def main(argv=None):
     p.add_argument("--quiet", action="store_true")
     args = p.parse_args(argv)
     try:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
+        out = output_folder(args.out, "--out")
         start = Policy(decision_interval=args.decision_interval, action=args.action,
                        hidden=args.hidden)
         start = start.with_theta(start.initial(np.random.default_rng(args.seed)))

@@ -37,7 +37,8 @@ FEATURES = ("odor", "odor_fraction", "upwind_cos", "upwind_sin", "upwind_angle",
 """The network's inputs, in order (docs/vector.md, "A learned baseline"): the binary odor and the
 odor fraction; the upwind direction in the robot frame (cos, sin, and its angle over pi) from
 the wind sample; exp(-k / memory) after k decisions without odor (0 before the first hit); a
-phase 2 pi k / cast_period (cos, sin) of the decisions k since the last hit (or the release);
+phase 2 pi sqrt(k / cast_period) (cos, sin) of the decisions k since the last hit (or the
+release), whose half-periods grow by cast_period / 2 decisions each, for casts that widen;
 the way back to the last hit's position in the robot frame, d / (1 + |d|) (0 before the first
 hit); the odometry heading (cos, sin)."""
 
@@ -53,12 +54,12 @@ def policy_path():
 class Policy:
     """A network and what its inputs mean: `decision_interval` (simulation steps per decision),
     `action` (one of ACTIONS), `hidden` (tanh units), `memory` (decisions for the odor memory to
-    fall by a factor e), `cast_period` (decisions per period of the cast phase), and `theta`, the
+    fall by a factor e), `cast_period` (decisions of the cast phase's first period), and `theta`, the
     flat weights (``Policy.size(hidden)`` of them: W1 (hidden x inputs), b1, w2, b2). `info`: a
     dict of how it was trained, kept with it in its file."""
 
     def __init__(self, theta=None, *, decision_interval=8, action="turn", hidden=16,
-                 memory=20.0, cast_period=64, info=None):
+                 memory=20.0, cast_period=32, info=None):
         from ..api import _finite_number, _whole
 
         self.decision_interval = _whole("decision_interval", decision_interval, 1, 2**31 - 1)
@@ -78,10 +79,21 @@ class Policy:
             raise ValueError("theta: every weight must be a finite number")
         self.theta = theta
         self.info = dict(info or {})
-        # why: tables, so that the memory's values are the same numbers in every batch
-        self._decay = np.exp(-np.arange(_MEMORY_SPAN * math.ceil(self.memory) + 1) / self.memory)
-        phase = 2.0 * np.pi * np.arange(self.cast_period) / self.cast_period
-        self._cast = np.stack([np.cos(phase), np.sin(phase)], axis=1)
+        self._memory_table = np.zeros((0, 3))
+
+    def memory_values(self, since):
+        """exp(-k / memory), cos and sin of 2 pi sqrt(k / cast_period) for the decisions `since`
+        (an int array): rows of a table made once with Python's math functions, so that they are
+        the same numbers in every batch and on every machine."""
+        need = int(since.max(initial=0)) + 1
+        table = self._memory_table
+        if need > len(table):
+            size = max(need, 2 * len(table), 1024)
+            rows = [(math.exp(-k / self.memory), math.cos(2 * math.pi * math.sqrt(
+                k / self.cast_period)), math.sin(2 * math.pi * math.sqrt(k / self.cast_period)))
+                for k in range(len(table), size)]
+            table = self._memory_table = np.vstack([table, np.array(rows)])
+        return table[since]
 
     @staticmethod
     def size(hidden):
@@ -138,7 +150,7 @@ class Policy:
         from .._files import write_whole
 
         text = json.dumps(self.to_dict(), indent=1) + "\n"
-        write_whole(path, text.encode("utf-8"), "policy file")
+        write_whole(path, text)
 
     @classmethod
     def from_dict(cls, d, where="policy"):
@@ -160,10 +172,6 @@ class Policy:
     def __repr__(self):
         return (f"Policy(hidden={self.hidden}, action={self.action!r}, decision_interval="
                 f"{self.decision_interval}, memory={self.memory}, cast_period={self.cast_period})")
-
-
-# decisions the odor memory is kept for, in units of `memory` (exp(-40) is 4e-18: nothing left)
-_MEMORY_SPAN = 40
 
 
 def load_policy(path=None):
@@ -222,9 +230,9 @@ def features(policy, memory, frames):
     out[:, 2] = np.where(calm, 1.0, -wx / safe)
     out[:, 3] = np.where(calm, 0.0, -wy / safe)
     out[:, 4] = np.arctan2(out[:, 3], out[:, 2]) / np.pi
-    decay = policy._decay
-    out[:, 5] = np.where(m.hit, decay[np.minimum(m.since, len(decay) - 1)], 0.0)
-    out[:, 6:8] = policy._cast[m.since % policy.cast_period]
+    values = policy.memory_values(m.since)
+    out[:, 5] = np.where(m.hit, values[:, 0], 0.0)
+    out[:, 6:8] = values[:, 1:3]
     c, s = np.cos(heading), np.sin(heading)
     dx, dy = m.at[:, 0] - x, m.at[:, 1] - y
     scale = np.where(m.hit, 1.0 / (1.0 + np.sqrt(dx * dx + dy * dy)), 0.0)

@@ -182,8 +182,8 @@ def _centred_ranks(x):
     return ranks / (len(x) - 1) - 0.5
 
 
-def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.0, sigma=0.1,
-          learning_rate=0.03, weight_decay=0.005, policy=None, seed=1, threads=2, log=None,
+def train(tasks=TRAIN_TASKS, *, generations=150, pairs=8, groups=1, window=300.0, sigma=0.05,
+          learning_rate=0.05, weight_decay=0.005, policy=None, seed=1, threads=2, log=None,
           progress=None):
     """Trains a policy with the evolution strategy (module docstring) and returns (policy,
     curve): the policy at the last generation's theta, and the learning curve (a list of dicts
@@ -194,7 +194,8 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.
     each for the decisions a first episode of at most `window` s needs (the timeout is `window`
     s; the fitness, the shaped reward summed over that time, so rewards arriving sooner and
     going again). `pairs`: antithetic pairs (the population is 2 pairs + 1: theta);
-    `sigma`: the perturbations' standard deviation; `learning_rate`: Adam's step;
+    `sigma`: the perturbations' standard deviation; `learning_rate`: Adam's step at the first generation (it falls linearly to a fifth of it at
+    the last);
     `weight_decay`: the L2 coefficient pulling theta to 0; `policy`: where to start (its
     decision interval, action mode and sizes are kept; default a Policy() with random weights
     from `seed`); `threads`: C++ threads of the vector environments (never change a result);
@@ -260,7 +261,10 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=12, groups=2, window=300.
             t = generation + 1
             adam_m = beta1 * adam_m + (1 - beta1) * grad
             adam_v = beta2 * adam_v + (1 - beta2) * grad * grad
-            step = learning_rate * math.sqrt(1 - beta2**t) / (1 - beta1**t)
+            # why: the step falls linearly to a fifth by the last generation, so that the last
+            # theta, the one returned, is not one noisy step away from a good one
+            rate = learning_rate * (1.0 - 0.8 * generation / max(1, generations - 1))
+            step = rate * math.sqrt(1 - beta2**t) / (1 - beta1**t)
             theta = theta + step * adam_m / (np.sqrt(adam_v) + 1e-8)
             row = {"generation": generation, "return": float(returns[-1]),
                    "success": float(successes[-1]),
@@ -355,16 +359,16 @@ def main(argv=None):
     p.add_argument("--task", action="append", help="a task of the built-in benchmark suite "
                    f"(repeatable; default: {', '.join(TRAIN_TASKS)})")
     p.add_argument("--generations", type=int, default=150)
-    p.add_argument("--pairs", type=int, default=12, help="antithetic pairs per generation")
-    p.add_argument("--groups", type=int, default=2, help="plumes per task per generation")
+    p.add_argument("--pairs", type=int, default=8, help="antithetic pairs per generation")
+    p.add_argument("--groups", type=int, default=1, help="plumes per task per generation")
     p.add_argument("--window", type=float, default=300.0,
                    help="seconds of each member's run per plume (and the timeout)")
-    p.add_argument("--sigma", type=float, default=0.1)
-    p.add_argument("--learning-rate", type=float, default=0.03)
+    p.add_argument("--sigma", type=float, default=0.05)
+    p.add_argument("--learning-rate", type=float, default=0.05)
     p.add_argument("--weight-decay", type=float, default=0.005)
     p.add_argument("--decision-interval", type=int, default=8)
     p.add_argument("--action", default="turn", choices=("turn", "heading"))
-    p.add_argument("--hidden", type=int, default=16)
+    p.add_argument("--hidden", type=int, default=8)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--quiet", action="store_true")

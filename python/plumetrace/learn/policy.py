@@ -58,7 +58,7 @@ class Policy:
     flat weights (``Policy.size(hidden)`` of them: W1 (hidden x inputs), b1, w2, b2). `info`: a
     dict of how it was trained, kept with it in its file."""
 
-    def __init__(self, theta=None, *, decision_interval=8, action="turn", hidden=16,
+    def __init__(self, theta=None, *, decision_interval=8, action="turn", hidden=8,
                  memory=20.0, cast_period=32, info=None):
         from ..api import _finite_number, _whole
 

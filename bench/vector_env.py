@@ -76,15 +76,16 @@ def vector_rate(n, steps, threads, **options):
     batches = actions(n)
     for k in range(50):
         env.step(batches[k // 16 % 64])
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     ended = 0
     for k in range(steps):
         _, _, terminated, truncated, _ = env.step(batches[k // 16 % 64])
         ended += int(terminated.sum() + truncated.sum())
-    elapsed = time.perf_counter() - start
+    elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu
     env.close()
-    return {"agent_steps_per_s": n * steps / elapsed, "reset_s": reset_s,
-            "bytes_per_env": memory / n, "episodes_ended": ended}
+    # why: per CPU-second too, which a machine shared with other work changes less than wall time
+    return {"agent_steps_per_s": n * steps / elapsed, "agent_steps_per_cpu_s": n * steps / cpu,
+            "reset_s": reset_s, "bytes_per_env": memory / n, "episodes_ended": ended}
 
 
 def plumeenv_rate(n, steps):
@@ -96,16 +97,16 @@ def plumeenv_rate(n, steps):
     reset_s = time.perf_counter() - start
     memory = rss_bytes() - before  # why: measured before any VectorPlumeEnv in this process
     batches = actions(n)
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     for k in range(steps):
         a = batches[k // 16 % 64]
         for i, e in enumerate(envs):
             _, _, terminated, truncated, _ = e.step(a[i])
             if terminated or truncated:
                 e.reset()
-    elapsed = time.perf_counter() - start
-    return {"agent_steps_per_s": n * steps / elapsed, "reset_s": reset_s,
-            "bytes_per_env": memory / n}
+    elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu
+    return {"agent_steps_per_s": n * steps / elapsed, "agent_steps_per_cpu_s": n * steps / cpu,
+            "reset_s": reset_s, "bytes_per_env": memory / n}
 
 
 def main():
@@ -117,6 +118,7 @@ def main():
     parser.add_argument("--json", help="also write the figures here")
     args = parser.parse_args()
     n = args.envs
+    load = os.getloadavg()[0]  # what else runs: figures on a shared machine are lower
     configs = [
         ("binary, K = n (one plume)", dict(group_size=n)),
         ("binary, K = 64", dict(group_size=64)),
@@ -138,10 +140,13 @@ def main():
     print(f"{n} environments, decision interval 1, threads = {args.threads or os.cpu_count()} "
           f"({os.cpu_count()} cores, {platform.processor() or platform.machine()})")
     print()
-    print("| configuration | agent-steps/s | x PlumeEnv | reset (s) | memory per env (kB) |")
-    print("|---|---|---|---|---|")
+    print(f"load average at the start: {load:.1f}")
+    print()
+    print("| configuration | agent-steps/s | per CPU-s | x PlumeEnv | reset (s) | memory per env "
+          "(kB) |")
+    print("|---|---|---|---|---|---|")
     for name, r in rows + [("PlumeEnv, one by one", single)]:
-        print(f"| {name} | {r['agent_steps_per_s']:,.0f} | "
+        print(f"| {name} | {r['agent_steps_per_s']:,.0f} | {r['agent_steps_per_cpu_s']:,.0f} | "
               f"{r['agent_steps_per_s'] / single['agent_steps_per_s']:.0f} | "
               f"{r['reset_s']:.2f} | {r['bytes_per_env'] / 1024:.1f} |")
     if args.json:

@@ -322,8 +322,8 @@ def plot_curve(curve, path, title=None, smooth=10):
         return np.convolve(values, np.ones(k) / k, mode="valid"), g[k - 1:]
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    for ax, key, label in ((axes[0], "return", "return per episode window"),
-                           (axes[1], "success", "success rate (first episodes)")):
+    for ax, key, label in ((axes[0], "return", "return in the window (shaped reward)"),
+                           (axes[1], "success", "success rate (first episode in the window)")):
         for column, colour, name in ((key, "C0", "theta"), (f"population_{key}", "C1",
                                                             "population mean")):
             values = np.array([r[column] for r in curve])

@@ -3,8 +3,8 @@ network trained with an evolution strategy on the vector environment, and the co
 runs it.
 
     from plumetrace.learn import Learned, load_policy, es
-    pt.register_controller("learned", Learned)          # the shipped policy (examples/learned.py)
-    policy, curve = es.train(["laminar"], generations=50)   # train one (python3 -m plumetrace.learn.es)
+    pt.register_controller("learned", Learned)              # the shipped policy
+    policy, curve = es.train(["laminar"], generations=50)   # python3 -m plumetrace.learn.es
     pt.run(controller=lambda scenario, rng: Learned(policy=policy))
 
 Submodules: ``policy`` (the features, the network, the policy file and the controller) and

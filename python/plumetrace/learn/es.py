@@ -189,17 +189,18 @@ def train(tasks=TRAIN_TASKS, *, generations=150, pairs=8, groups=1, window=300.0
     curve): the policy at the last generation's theta, and the learning curve (a list of dicts
     with CURVE_COLUMNS, one per generation).
 
-    `tasks`: names of the built-in suite's tasks (suite_tasks) or Tasks; every generation runs
-    every member on `groups` plumes of each (new plumes each generation, drawn from `seed`),
-    each for the decisions a first episode of at most `window` s needs (the timeout is `window`
-    s; the fitness, the shaped reward summed over that time, so rewards arriving sooner and
-    going again). `pairs`: antithetic pairs (the population is 2 pairs + 1: theta);
-    `sigma`: the perturbations' standard deviation; `learning_rate`: Adam's step at the first generation (it falls linearly to a fifth of it at
-    the last);
+    `tasks`: names of the built-in suite's tasks (suite_tasks) or Tasks. Every generation runs
+    every member on `groups` new plumes of each task (drawn from `seed`) for the decisions a
+    first episode of at most `window` s needs (the timeout is `window` s); a member's fitness is
+    the shaped reward summed over that time, averaged over tasks and plumes, so a member that
+    arrives sooner starts again and earns more. `pairs`: antithetic pairs (the population is
+    2 pairs + 1: theta); `sigma`: the perturbations' standard deviation; `learning_rate`:
+    Adam's step at the first generation (it falls linearly to a fifth of it at the last);
     `weight_decay`: the L2 coefficient pulling theta to 0; `policy`: where to start (its
     decision interval, action mode and sizes are kept; default a Policy() with random weights
-    from `seed`); `threads`: C++ threads of the vector environments (never change a result);
-    `log`: a CSV file (in a folder that exists) the curve is written to after each generation; `progress`: f(row) called after each
+    from `seed`); `threads`: threads for the tasks side by side and the vector environments'
+    C++ threads (never change a result); `log`: a CSV file (in a folder that exists) the curve
+    is written to after each generation; `progress`: f(row) called after each
     generation. Raises TypeError or ValueError naming the argument."""
     from .._files import write_whole
     from ..api import _finite_number, _whole

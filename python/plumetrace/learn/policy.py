@@ -54,9 +54,9 @@ def policy_path():
 class Policy:
     """A network and what its inputs mean: `decision_interval` (simulation steps per decision),
     `action` (one of ACTIONS), `hidden` (tanh units), `memory` (decisions for the odor memory to
-    fall by a factor e), `cast_period` (decisions of the cast phase's first period), and `theta`, the
-    flat weights (``Policy.size(hidden)`` of them: W1 (hidden x inputs), b1, w2, b2). `info`: a
-    dict of how it was trained, kept with it in its file."""
+    fall by a factor e), `cast_period` (decisions of the cast phase's first period), and
+    `theta`, the flat weights (``Policy.size(hidden)`` of them: W1 (hidden x inputs), b1, w2,
+    b2). `info`: a dict of how it was trained, kept with it in its file."""
 
     def __init__(self, theta=None, *, decision_interval=8, action="turn", hidden=8,
                  memory=20.0, cast_period=32, info=None):
@@ -114,10 +114,6 @@ class Policy:
         theta[:h * n] = rng.standard_normal(h * n) * scale / math.sqrt(n)
         theta[h * n + h:h * n + 2 * h] = rng.standard_normal(h) * scale / math.sqrt(h)
         return theta
-
-    def memory_of(self, n):
-        """A Memory for `n` environments, every one at the start of an episode."""
-        return Memory(n)
 
     def act(self, memory, frames, thetas=None):
         """The actions (array of len(frames)) for `frames` (n x 8 float32, one frame per

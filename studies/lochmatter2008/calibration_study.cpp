@@ -148,7 +148,7 @@ class Where {
   std::string where_;
 };
 
-double as_number(const ConfigValue& value) {
+double number_value(const ConfigValue& value) {
   if (const auto* i = std::get_if<std::int64_t>(&value)) return static_cast<double>(*i);
   return std::get<double>(value);
 }
@@ -161,7 +161,7 @@ bool is_number(const ConfigValue& value) {
 // equal boolean (as plumetrace.calibrate.study.same_value)
 bool same_value(const ConfigValue& a, const ConfigValue& b) {
   if (is_number(a) && is_number(b)) {
-    const double x = as_number(a), y = as_number(b);
+    const double x = number_value(a), y = number_value(b);
     if (x == y) return true;
     if (!std::isfinite(x) || !std::isfinite(y)) return false;
     return std::fabs(x - y) <= std::max(1e-9 * std::max(std::fabs(x), std::fabs(y)), 1e-12);
@@ -191,11 +191,11 @@ CalibrationUnknown read_unknown(const toml::node& node, const Where& where) {
     u.log = where.flag(e->get("log"), "log", "true or false");
     u.low = where.number(e->get("low"), "low", u.integer);
     u.high = where.number(e->get("high"), "high", u.integer);
-    if (!(as_number(u.low) < as_number(u.high))) {
+    if (!(number_value(u.low) < number_value(u.high))) {
       where.fail("bad range: low (" + format_value(u.low) + ") must be below high (" +
                  format_value(u.high) + ")");
     }
-    if (u.log && as_number(u.low) <= 0) {
+    if (u.log && number_value(u.low) <= 0) {
       where.fail("bad range: log = true needs low > 0 (got " + format_value(u.low) + ")");
     }
   } else {

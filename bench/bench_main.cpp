@@ -100,12 +100,14 @@ BENCHMARK(BM_OdorQuery);
 
 // one decision of 1024 vector-environment agents at decision interval 1 with random headings
 // (redrawn every 16 steps), groups of range(0) agents per plume (range 1: 1 concentration
-// observation, else binary), on one thread: what plumetrace.vector costs without Python
+// observation, else binary), on range(2) threads (wall-clock time): what plumetrace.vector costs
+// without Python
 void BM_VectorStep(benchmark::State& state) {
   VectorSpec spec;
   spec.envs = 1024;
   spec.group = static_cast<int>(state.range(0));
   spec.observe.concentration = state.range(1) != 0;
+  spec.threads = static_cast<int>(state.range(2));
   VectorWorld world(Scenario{}, spec);
   world.reset(std::vector<std::uint64_t>(1024, 1));
   Rng rng(7);
@@ -120,7 +122,10 @@ void BM_VectorStep(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * 1024);
   state.SetLabel(state.range(1) != 0 ? "concentration" : "binary");
 }
-BENCHMARK(BM_VectorStep)->ArgsProduct({{64, 1024}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_VectorStep)
+    ->ArgsProduct({{64, 1024}, {0, 1}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 
 // one run per algorithm (range 0) in the laminar wind or the default meander (range 1)
 void BM_WholeRun(benchmark::State& state) {

@@ -123,6 +123,7 @@ def main():
         ("binary, K = n (one plume)", dict(group_size=n)),
         ("binary, K = 64", dict(group_size=64)),
         ("binary, K = 16", dict(group_size=16)),
+        ("concentration, K = n (one plume)", dict(group_size=n, observation="concentration")),
         ("concentration, K = 64", dict(group_size=64, observation="concentration")),
         ("binary, K = 1 (a plume each)", dict(group_size=1)),
     ]

@@ -39,8 +39,8 @@ __all__ = ["ConfigError", "MAX_THREADS", "Param", "Scenario", "ScenarioWarning",
 __path__ = __import__("pkgutil").extend_path(__path__, __name__)
 
 # the submodules a user imports, loaded on first use
-_SUBMODULES = ("benchmark", "calibrate", "controllers", "env", "evidence", "plots", "report",
-               "studies", "sweeps")
+_SUBMODULES = ("benchmark", "calibrate", "controllers", "env", "evidence", "learn", "plots",
+               "report", "studies", "sweeps", "team_env", "vector")
 
 
 def __getattr__(name):

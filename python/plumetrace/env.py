@@ -29,7 +29,8 @@ Observation (``observation_space``, float32, 8 values):
      ``odor.model``: odor is perceived where it reaches ``odor.threshold``),
      x, y, heading (odometry relative to the release pose:
      m, m, rad in [-pi, pi]), odometer (m), wind_x, wind_y (one noisy wind sample in the robot
-     frame, m/s, taken at the end of the decision; 0 when ``wind_every_step`` is False;
+     frame, m/s, taken at the end of the decision, the last one again in the terminal frame of
+     a run that ended within it; 0 when ``wind_every_step`` is False;
      ``env.measure_wind()`` takes one on demand), odor fraction (the share of this decision's
      sensings that perceived odor, 0 to 1)]
 Action (``action_space``): a heading in [-pi, pi] (rad, odometry frame; 0 is the start heading,
@@ -350,6 +351,7 @@ class PlumeEnv(Env):
         self._next_trial = self.trial + 1
         self._world = _core.World(self._path, self._settings, self.episode_seed, self.trial,
                                   self._reads)
+        self._wind = (0.0, 0.0)
         seen = self._world.observe()
         self._last = self._observation(seen, float(seen.odor))
         self._path_xy = [self._world.pose()[:2]]
@@ -420,7 +422,15 @@ class PlumeEnv(Env):
             self._renderer = None
 
     def _observation(self, seen, odor_fraction):
-        wind = self._world.measure_wind_body() if self.wind_every_step else (0.0, 0.0)
+        if not self.wind_every_step:
+            wind = (0.0, 0.0)
+        elif self._world.done():
+            # why: the terminal frame of a run that ended within the decision repeats the last
+            # sample; a new one would count in the run's wind_samples after its end
+            wind = self._wind
+        else:
+            wind = self._world.measure_wind_body()
+        self._wind = wind
         p = seen.odometry
         self._odometry = (p.x, p.y, p.heading), seen.odometer
         self._odor = seen.odor

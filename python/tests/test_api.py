@@ -308,7 +308,7 @@ def test_the_command_line_still_names_where_a_setting_came_from(tmp_path):
 def test_dir_lists_the_api_and_the_submodules_and_each_resolves():
     names = dir(pt)
     for name in [*pt.__all__, "controllers", "env", "plots", "report", "studies", "sweeps",
-                 "calibrate", "evidence"]:
+                 "calibrate", "evidence", "vector", "team_env", "learn", "benchmark"]:
         assert name in names, name
         assert getattr(pt, name) is not None
     assert "report" in pt.__all__ and callable(pt.report)

@@ -86,9 +86,8 @@ def test_the_controller_plays_exactly_what_the_vector_environment_played(policy,
     for i in range(2):
         run = pt.run(LAMINAR, seed=40 + i, trial=0, overrides=keys,
                      controller=lambda scenario, rng: Learned(policy=policy))
-        # why: not wind_samples: the vector environment samples the wind for the terminal frame of
-        # an episode that ended within a decision, a sample no controller takes after the end
-        for key in ("outcome", "time_s", "steps", "d_t", "d_u", "odor_fraction", "losses"):
+        for key in ("outcome", "time_s", "steps", "d_t", "d_u", "odor_fraction", "losses",
+                    "wind_samples"):
             assert run[key] == result[i][key], (i, key, run[key], result[i][key])
         # the position at every decision and at the end, bit for bit
         x, y = run["trajectory"]["x"], run["trajectory"]["y"]

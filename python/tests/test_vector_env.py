@@ -75,15 +75,23 @@ def test_spaces_dtypes_and_batched_outputs_follow_gymnasium_vector_conventions()
         env.step(np.zeros((6, 1)))
 
 
-def test_the_same_seed_and_actions_replay_every_value_whatever_the_thread_count():
-    acts = actions(8, 90)
-    runs = [play(VectorPlumeEnv(8, group_size=2, threads=t, wind__model="meander", **SHORT), 11,
-                 acts) for t in (1, 2, 1)]
+@pytest.mark.parametrize("n, steps, options", [
+    (8, 90, dict(group_size=2, wind__model="meander")),
+    # why: the agents are split among the threads in chunks of 16 whatever the groups: one plume
+    # of 40 agents, and 17 plumes renewed at each episode (past the first autoreset), each
+    # decision 3 steps
+    (40, 90, dict(group_size=40, decision_interval=3, observation="concentration")),
+    (17, 25, dict(renew_plumes=True, decision_interval=3)),
+])
+def test_the_same_seed_and_actions_replay_every_value_whatever_the_thread_count(n, steps, options):
+    acts = actions(n, steps)
+    runs = [play(VectorPlumeEnv(n, threads=t, **options, **SHORT), 11, acts)
+            for t in (1, 2, 3, 1)]
     for other in runs[1:]:
         assert len(other) == len(runs[0])
         assert all(np.array_equal(a, b) for a, b in zip(runs[0], other))
     # another seed, another plume and other starts
-    assert not np.array_equal(play(VectorPlumeEnv(8, group_size=2, **SHORT), 12, acts[:1])[0],
+    assert not np.array_equal(play(VectorPlumeEnv(n, **options, **SHORT), 12, acts[:1])[0],
                               runs[0][0])
 
 

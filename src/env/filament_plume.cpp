@@ -43,6 +43,29 @@ double kernel_at(double scale, double cut2, double h, double d2) {
   return d2 < cut2 ? v : 0.0;
 }
 
+// The most one filament with 1 / w in [h_lo, h_hi] can add at squared horizontal distance
+// e2 or more from the query: scale h^3 exp(-e2 h^2) (Gaussian) or scale h^3 exp(-sqrt(e2) h^2)
+// (printed) at the h that maximises it in the range (h^2 = 3 / (2 e2), or 3 / (2 e)).
+template <Kernel kKernel>
+double kernel_bound(double scale, double e2, double h_lo, double h_hi) {
+  const double e = kKernel == Kernel::kGaussian ? e2 : std::sqrt(e2);
+  const double h = e > 0.0 ? std::clamp(std::sqrt(1.5 / e), h_lo, h_hi) : h_hi;
+  return scale * h * h * h * vmath::exp_neg(-e * h * h);
+}
+
+// what each of `count` blocks can add at most, given its squared horizontal distance e2 from
+// the query, its filaments' least and greatest 1 / w and their number m
+template <Kernel kKernel>
+[[gnu::always_inline]] inline void most_loop(const double* __restrict e2,
+                                             const double* __restrict h_lo,
+                                             const double* __restrict h_hi,
+                                             const double* __restrict m, std::int64_t count,
+                                             double scale, double* __restrict most) {
+  for (std::int64_t c = 0; c < count; ++c) {
+    most[c] = m[c] * kernel_bound<kKernel>(scale, e2[c], h_lo[c], h_hi[c]);
+  }
+}
+
 // the concentrations of m filaments at u, one per filament
 template <Kernel kKernel>
 [[gnu::always_inline]] inline void kernel_loop(const Vec3& u, const double* __restrict x,
@@ -184,6 +207,17 @@ void kernels(const Vec3& u, const double* __restrict x, const double* __restrict
     kernel_loop<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
   } else {
     kernel_loop<Kernel::kPrinted>(u, x, y, z, h, m, scale, cut2, out);
+  }
+}
+
+PLUMETRACE_VECTOR_CLONES
+void block_most(const double* __restrict e2, const double* __restrict h_lo,
+                const double* __restrict h_hi, const double* __restrict m, std::int64_t count,
+                double scale, Kernel kernel, double* __restrict most) {
+  if (kernel == Kernel::kGaussian) {
+    most_loop<Kernel::kGaussian>(e2, h_lo, h_hi, m, count, scale, most);
+  } else {
+    most_loop<Kernel::kPrinted>(e2, h_lo, h_hi, m, count, scale, most);
   }
 }
 
@@ -385,6 +419,7 @@ class SmallVector {
   }
   std::size_t size() const { return size_; }
   T& operator[](std::size_t i) { return size_ <= N ? fixed_[i] : spill_[i]; }
+  T* data() { return size_ <= N ? fixed_.data() : spill_.data(); }
 
  private:
   std::array<T, N> fixed_;
@@ -392,30 +427,25 @@ class SmallVector {
   std::size_t size_ = 0;
 };
 
-// The most one filament with 1 / w in [h_lo, h_hi] can add at squared horizontal distance
-// e2 or more from the query: scale h^3 exp(-e2 h^2) (Gaussian) or scale h^3 exp(-sqrt(e2) h^2)
-// (printed) at the h that maximises it in the range (h^2 = 3 / (2 e2), or 3 / (2 e)).
-double kernel_bound(Kernel kernel, double scale, double e2, double h_lo, double h_hi) {
-  const double e = kernel == Kernel::kGaussian ? e2 : std::sqrt(e2);
-  const double h = e > 0.0 ? std::clamp(std::sqrt(1.5 / e), h_lo, h_hi) : h_hi;
-  return scale * h * h * h * vmath::exp_neg(-e * h * h);
-}
-
 }  // namespace
 
 double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   // why: the sum is defined as kLanes partial sums, filament i going to sum i mod kLanes in
   // index order, added pairwise at the end; so its terms are computed in vector loops and the
-  // result is the same bits at every vector width. Partial sums of non-negative terms never
-  // decrease and rounding is monotonic, so stopping once the total reaches `stop_at` answers
-  // "does it reach" exactly as the full sum would. A test against a threshold also stops once
-  // the partial sum plus a bound on what the blocks left can add stays below it by a relative
-  // 1e-9, a thousand times the rounding of any sum of the capacity's terms and of the
-  // exponential: the full sum stays below it too. Queries away from the plume's core end at
+  // result is the same bits at every vector width. Queries away from the plume's core end at
   // once; the answer is the same.
+  //
+  // A test against a threshold needs only the answer, and settles it with a margin of a
+  // relative 1e-9 + 4 n eps, beyond the rounding of any sum of the n terms in any order (at
+  // most (n - 1) eps of it, the terms being non-negative) and of the exponential in the bounds
+  // (1e-14). It sums the nearby blocks in the order of what each can add at most, largest
+  // first, each block's terms in any order: once that partial sum reaches the threshold by the
+  // margin, the sum as defined reaches it too (its terms are the same non-negative values; any
+  // order of summing rounds within n eps); once the partial sum plus the bound on the blocks
+  // left stays below it by the margin, the sum as defined does too. Only a sum within the
+  // margin of the threshold is summed as defined to decide (docs/model.md section 4.6).
   constexpr std::size_t kLanes = 8;
   static_assert(kBlock % kLanes == 0);
-  constexpr double kMargin = 1.0 + 1e-9;
   double v[kBlock];
   double acc[kLanes] = {};
   const auto total = [&acc] {
@@ -425,48 +455,83 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   const double scale = kernel_scale(params_);
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  const double margin = 1.0 + 1e-9 + 4.0 * static_cast<double>(n) * 0x1p-52;
+  const auto block_terms = [&](std::size_t b) {
+    const std::size_t start = b * kBlock;
+    const std::size_t m = std::min(kBlock, n - start);
+    loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
+                   static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    return m;
+  };
   // the blocks within the cut-off, in index order, and for a threshold test what each can add
-  // at most; `left[c]` sums those from candidate c on, added from the last so that each is the
-  // rounded sum of its own terms
+  // at most
   // why: on the stack for the usual few candidates (a query meets the blocks within the
   // cut-off, about 3 of the default 25), on the heap past that
   constexpr std::size_t kOnStack = 32;
   SmallVector<std::size_t, kOnStack> near;
-  SmallVector<double, kOnStack + 1> left;
+  SmallVector<double, kOnStack> most;
   const bool test = std::isfinite(stop_at);
+  double bound = 0.0;
+  SmallVector<double, kOnStack> e2, h_lo, h_hi, count;
   for (std::size_t b = 0; b < blocks; ++b) {
     // why: rounding is monotonic, so no filament of a block is nearer than its box in (x, y);
     // a box at or beyond the cut-off holds only filaments that add exactly 0
     const double* box = bounds_.data() + 4 * b;
     const double ex = std::max({box[0] - u.x, 0.0, u.x - box[1]});
     const double ey = std::max({box[2] - u.y, 0.0, u.y - box[3]});
-    const double e2 = ex * ex + ey * ey;
-    if (e2 >= cut2) continue;
+    const double d2 = ex * ex + ey * ey;
+    if (d2 >= cut2) continue;
     near.push_back(b);
     if (test) {
-      const double m = static_cast<double>(std::min(kBlock, n - b * kBlock));
-      left.push_back(m *
-                     kernel_bound(params_.kernel, scale, e2, h_range_[2 * b], h_range_[2 * b + 1]));
+      e2.push_back(d2);
+      h_lo.push_back(h_range_[2 * b]);
+      h_hi.push_back(h_range_[2 * b + 1]);
+      count.push_back(static_cast<double>(std::min(kBlock, n - b * kBlock)));
+      most.push_back(0.0);
     }
   }
   if (test) {
-    left.push_back(0.0);
-    for (std::size_t c = near.size(); c-- > 0;) left[c] += left[c + 1];
-    if (left[0] * kMargin < stop_at) return left[0];
+    // what each can add at most, in a vector loop
+    loops::block_most(e2.data(), h_lo.data(), h_hi.data(), count.data(),
+                      static_cast<std::int64_t>(near.size()), scale, params_.kernel, most.data());
+    for (std::size_t c = 0; c < near.size(); ++c) bound += most[c];
+    if (bound * margin < stop_at) return bound;
+    // the candidates by what each can add, largest first (insertion sort: a few), and what
+    // those after each can add, summed from the last
+    SmallVector<std::size_t, kOnStack> order;
+    SmallVector<double, kOnStack + 1> after;
+    for (std::size_t c = 0; c < near.size(); ++c) {
+      order.push_back(c);
+      after.push_back(0.0);
+      for (std::size_t j = c; j > 0 && most[order[j - 1]] < most[order[j]]; --j) {
+        std::swap(order[j - 1], order[j]);
+      }
+    }
+    after.push_back(0.0);
+    for (std::size_t j = near.size(); j-- > 0;) after[j] = after[j + 1] + most[order[j]];
+    double partial = 0.0;
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      const std::size_t m = block_terms(near[order[j]]);
+      // why: in lanes, so that the adds do not wait on each other (any order will do here)
+      double lanes[kLanes] = {};
+      std::size_t k = 0;
+      for (; k + kLanes <= m; k += kLanes) {
+        for (std::size_t l = 0; l < kLanes; ++l) lanes[l] += v[k + l];
+      }
+      for (; k < m; ++k) lanes[k % kLanes] += v[k];
+      for (const double lane : lanes) partial += lane;
+      if (partial >= stop_at * margin) return partial;
+      if ((partial + after[j + 1]) * margin < stop_at) return partial + after[j + 1];
+    }
   }
   for (std::size_t c = 0; c < near.size(); ++c) {
-    const std::size_t start = near[c] * kBlock;
-    const std::size_t m = std::min(kBlock, n - start);
-    loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
-                   static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    const std::size_t m = block_terms(near[c]);
     std::size_t k = 0;
     for (; k + kLanes <= m; k += kLanes) {
       for (std::size_t l = 0; l < kLanes; ++l) acc[l] += v[k + l];
     }
     for (; k < m; ++k) acc[k % kLanes] += v[k];
-    const double sum = total();
-    if (sum >= stop_at) break;
-    if (test && (sum + left[c + 1]) * kMargin < stop_at) break;
+    if (total() >= stop_at) break;
   }
   return total();
 }

@@ -13,9 +13,10 @@ namespace plumetrace::loops {
 /// One step of filaments 0..n-1: drift d (the wind's displacement, zero where the caller has
 /// moved them already), random walk of standard deviation `stddev` and width growth (paper
 /// eqs. 2 and 3; w += gamma / (2 w) computed as w += (gamma / 2) h or, with `area`, Farrell et
-/// al.'s w = sqrt(w^2 + gamma); then h = 1 / w, kept for the concentration). Normals: the Box-Muller pair of counter 2i gives (x, y) of filament i, that
-/// of counter 2j + 1 the z of filaments j and j + n / 2 (and of counter n the z of the last
-/// filament when n is odd); each counter c is hashed as mix64(key + c * kGamma).
+/// al.'s w = sqrt(w^2 + gamma); then h = 1 / w, kept for the concentration). Normals: the
+/// Box-Muller pair of counter 2i gives (x, y) of filament i, that of counter 2j + 1 the z of
+/// filaments j and j + n / 2 (and of counter n the z of the last filament when n is odd); each
+/// counter c is hashed as mix64(key + c * kGamma).
 void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
                      double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
                      std::uint64_t key, double stddev, double gamma, bool area = false);
@@ -25,5 +26,12 @@ void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restr
 void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
              const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
              Kernel kernel, double cut2, double* __restrict out);
+
+/// What each of `count` blocks can add at most at a query (`most`), given its squared
+/// horizontal distance e2 from the query, its filaments' least and greatest 1 / w and their
+/// number m (FilamentPlume::sum_kernels).
+void block_most(const double* __restrict e2, const double* __restrict h_lo,
+                const double* __restrict h_hi, const double* __restrict m, std::int64_t count,
+                double scale, Kernel kernel, double* __restrict most);
 
 }  // namespace plumetrace::loops

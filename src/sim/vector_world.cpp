@@ -136,9 +136,26 @@ struct VectorWorld::Slot {
   double start_distance = 1.0;  // to the source at release (m)
   double distance = 0.0;        // to the source at the last decision (m)
   Observation seen;             // the last sensing
+  Command command;              // the decision's command
+  int sensed = 0;               // sensings in the decision so far
+  int odor_count = 0;           // of which with odor
+  Vec2 wind{0.0, 0.0};          // the last wind sample (robot frame, m/s)
 };
 
+// A processor's hint that the thread is spinning (lets the other hyperthread run).
+inline void spin_pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
+#endif
+}
+
 // A pool of threads that wait between calls, so a step costs no thread start.
+// why: a step is a few phases of a millisecond or less, and waking a sleeping thread costs tens
+// of microseconds (more in a virtual machine): the threads and the caller spin for a while
+// (kSpins pauses, some tens of microseconds) before they sleep, so the phases of one step follow
+// each other without a wake-up, and a pool left idle sleeps
 class VectorWorld::Pool {
  public:
   explicit Pool(int extra) {
@@ -153,7 +170,7 @@ class VectorWorld::Pool {
   ~Pool() {
     {
       const std::lock_guard lock(mutex_);
-      stop_ = true;
+      stop_.store(true);
     }
     wake_.notify_all();
     for (auto& t : threads_) t.join();
@@ -169,20 +186,25 @@ class VectorWorld::Pool {
       const std::lock_guard lock(mutex_);
       job_ = &job;
       n_ = n;
-      next_ = 0;
-      busy_ = threads_.size();
+      next_.store(0);
+      busy_.store(threads_.size());
       failure_ = nullptr;
-      ++generation_;
+      generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
     work();
+    for (int spin = 0; spin < kSpins && busy_.load(std::memory_order_acquire) != 0; ++spin) {
+      spin_pause();
+    }
     std::unique_lock lock(mutex_);
-    done_.wait(lock, [this] { return busy_ == 0; });
+    done_.wait(lock, [this] { return busy_.load() == 0; });
     job_ = nullptr;
     if (failure_) std::rethrow_exception(failure_);
   }
 
  private:
+  static constexpr int kSpins = 1 << 11;
+
   void work() {
     try {
       for (std::size_t i = next_++; i < n_; i = next_++) (*job_)(i);
@@ -195,16 +217,21 @@ class VectorWorld::Pool {
   void serve() {
     std::uint64_t seen = 0;
     for (;;) {
+      const auto called = [&] {
+        return stop_.load(std::memory_order_acquire) ||
+               generation_.load(std::memory_order_acquire) != seen;
+      };
+      for (int spin = 0; spin < kSpins && !called(); ++spin) spin_pause();
       {
         std::unique_lock lock(mutex_);
-        wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-        if (stop_) return;
-        seen = generation_;
+        wake_.wait(lock, called);
+        if (stop_.load()) return;
+        seen = generation_.load();
       }
       work();
       {
         const std::lock_guard lock(mutex_);
-        --busy_;
+        busy_.fetch_sub(1, std::memory_order_acq_rel);
       }
       done_.notify_one();
     }
@@ -216,9 +243,9 @@ class VectorWorld::Pool {
   const std::function<void(std::size_t)>* job_ = nullptr;
   std::size_t n_ = 0;
   std::atomic<std::size_t> next_{0};
-  std::size_t busy_ = 0;
-  std::uint64_t generation_ = 0;
-  bool stop_ = false;
+  std::atomic<std::size_t> busy_{0};
+  std::atomic<std::uint64_t> generation_{0};
+  std::atomic<bool> stop_{false};
   std::exception_ptr failure_;
 };
 
@@ -259,7 +286,8 @@ VectorWorld::VectorWorld(const Scenario& scenario, const VectorSpec& spec)
   info_.outcome.assign(n, 0);
   info_.seed.assign(n, 0);
   info_.episode.assign(n, 0);
-  const int threads = std::clamp(spec.threads, 1, static_cast<int>(groups_.size()));
+  const std::size_t jobs = std::max(groups_.size(), (n + kChunk - 1) / kChunk);
+  const int threads = std::clamp(spec.threads, 1, static_cast<int>(jobs));
   pool_ = std::make_unique<Pool>(threads - 1);
 }
 
@@ -373,7 +401,10 @@ void VectorWorld::finish_decision(std::size_t i, const Observation* seen, int se
   in.seen = seen;
   in.reading = o.concentration ? s.agent->reading() : (seen->odor ? 1.0 : 0.0);
   in.odor_fraction = static_cast<double>(odor_count) / static_cast<double>(sensed);
-  if (o.wind) in.wind = s.agent->wind_probe().measure_wind_body();
+  // why: once the run has ended its terminal frame repeats the last sample: a new one would count
+  // in the run's wind_samples, which a controller never takes after the end
+  if (o.wind && !s.agent->done()) s.wind = s.agent->wind_probe().measure_wind_body();
+  in.wind = s.wind;
   const auto width = static_cast<std::size_t>(o.frame_width());
   if (o.stack > 1) {
     std::memmove(row + width, row, width * static_cast<std::size_t>(o.stack - 1) * sizeof(float));
@@ -400,79 +431,78 @@ void VectorWorld::step(std::span<const double> actions) {
     }
   }
   actions_ = actions;
-  run_groups(&VectorWorld::step_group);
+  // why: robots do not disturb the plume, so between two plume steps every agent's work (its
+  // sensing, then its move) is its own, and the agents are split among the threads in chunks
+  // whatever the groups: one plume of n agents keeps every core busy. Each plume steps alone,
+  // in its own phase; the order of each agent's and each plume's operations is that of one run,
+  // so the results do not depend on the threads
+  const int d = spec_.decision_interval;
+  for (int step_no = 0; step_no <= d; ++step_no) {
+    run_agents([this, step_no](std::size_t i) { agent_phase(i, step_no); });
+    if (step_no < d) run_groups(&VectorWorld::step_plume);
+  }
 }
 
-void VectorWorld::step_group(std::size_t g) {
+void VectorWorld::run_agents(const std::function<void(std::size_t)>& job) {
+  const std::size_t n = slots_.size();
+  pool_->run((n + kChunk - 1) / kChunk, [&](std::size_t c) {
+    for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) job(i);
+  });
+}
+
+void VectorWorld::step_plume(std::size_t g) {
   const auto k = static_cast<std::size_t>(spec_.group);
-  const std::size_t begin = g * k, end = begin + k;
-  Group& group = *groups_[g];
-  const double dt = scenario_.sim.dt;
-  const unsigned reads = spec_.observe.concentration ? kReadsConcentration : kReadsBinary;
-  // each running agent's command for the decision, from its action
-  thread_local std::vector<Command> commands;
-  thread_local std::vector<int> sensed, odor_count;
-  commands.assign(k, Command{});
-  sensed.assign(k, 0);
-  odor_count.assign(k, 0);
-  bool anyone = false;
-  for (std::size_t i = begin; i < end; ++i) {
-    Slot& s = *slots_[i];
+  // why: with a fresh plume per episode, a plume whose only agent waits is replaced, not stepped;
+  // a shared plume keeps the group's clock whoever runs on it
+  bool anyone = !spec_.renew_plumes;
+  for (std::size_t i = g * k; i < (g + 1) * k && !anyone; ++i) anyone = !slots_[i]->waiting;
+  if (anyone) plumetrace::step(groups_[g]->env, scenario_.sim.dt);
+}
+
+void VectorWorld::agent_phase(std::size_t i, int step_no) {
+  Slot& s = *slots_[i];
+  if (step_no == 0) {
+    // the command for the decision, from the action
     reward_[i] = 0.0;
     terminated_[i] = truncated_[i] = 0;
-    if (s.waiting) continue;
-    anyone = true;
-    commands[i - begin] =
-        action_command(spec_.action, spec_.headings, actions_[i], s.seen.odometry.heading);
+    s.sensed = s.odor_count = 0;
+    if (!s.waiting) {
+      s.command =
+          action_command(spec_.action, spec_.headings, actions_[i], s.seen.odometry.heading);
+    }
+  } else if (!s.waiting && !s.agent->done()) {
+    // the sensing after the plume's step
+    s.seen = s.agent->sense(spec_.observe.concentration ? kReadsConcentration : kReadsBinary);
+    ++s.sensed;
+    if (s.seen.odor) ++s.odor_count;
   }
-  // why: with a fresh plume per episode, a plume whose only agent waits is replaced, not stepped
-  const bool step_plume = anyone || !spec_.renew_plumes;
-  for (int step_no = 0; step_no < spec_.decision_interval; ++step_no) {
-    bool running = false;
-    for (std::size_t i = begin; i < end; ++i) {
-      Slot& s = *slots_[i];
-      if (s.waiting || s.agent->done()) continue;
-      s.agent->act(commands[i - begin]);
-      if (s.agent->outcome() == Outcome::kSuccess) reward_[i] += 1.0;
-      running = running || !s.agent->done();
-    }
-    if (step_plume) plumetrace::step(group.env, dt);
-    if (!running) {
-      // why: the plume keeps the group's clock; nobody senses it
-      continue;
-    }
-    for (std::size_t i = begin; i < end; ++i) {
-      Slot& s = *slots_[i];
-      if (s.waiting || s.agent->done()) continue;
-      s.seen = s.agent->sense(reads);
-      ++sensed[i - begin];
-      if (s.seen.odor) ++odor_count[i - begin];
-    }
+  if (step_no < spec_.decision_interval) {
+    if (s.waiting || s.agent->done()) return;
+    s.agent->act(s.command);
+    if (s.agent->outcome() == Outcome::kSuccess) reward_[i] += 1.0;
+    return;
   }
-  for (std::size_t i = begin; i < end; ++i) {
-    Slot& s = *slots_[i];
-    if (s.waiting) {
-      // the episode ended at the last step: the next one starts on the plume as it is now
-      ++s.episode;
-      if (spec_.renew_plumes) {
-        restart_group(g);
-      } else {
-        start_episode(i, false);
-      }
-      continue;
+  if (s.waiting) {
+    // the episode ended at the last step: the next one starts on the plume as it is now
+    ++s.episode;
+    if (spec_.renew_plumes) {
+      restart_group(i);  // why: group_size = 1, so group i is environment i's alone
+    } else {
+      start_episode(i, false);
     }
-    finish_decision(i, &s.seen, sensed[i - begin], odor_count[i - begin]);
-    if (spec_.reward == RewardMode::kShaped) {
-      const double d = source_distance(scenario_, s.agent->robot());
-      reward_[i] += (s.distance - d) / s.start_distance;
-      s.distance = d;
-    }
-    const Outcome out = s.agent->outcome();
-    truncated_[i] = out == Outcome::kTimeout;
-    terminated_[i] = out != Outcome::kRunning && out != Outcome::kTimeout;
-    s.waiting = out != Outcome::kRunning;
-    write_info(i);
+    return;
   }
+  finish_decision(i, &s.seen, s.sensed, s.odor_count);
+  if (spec_.reward == RewardMode::kShaped) {
+    const double dist = source_distance(scenario_, s.agent->robot());
+    reward_[i] += (s.distance - dist) / s.start_distance;
+    s.distance = dist;
+  }
+  const Outcome out = s.agent->outcome();
+  truncated_[i] = out == Outcome::kTimeout;
+  terminated_[i] = out != Outcome::kRunning && out != Outcome::kTimeout;
+  s.waiting = out != Outcome::kRunning;
+  write_info(i);
 }
 
 void VectorWorld::write_info(std::size_t i) {

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -86,7 +87,7 @@ struct VectorSpec {
   ActionMode action = ActionMode::kHeading;
   int headings = 0;  ///< kDiscrete: the number of headings n
   RewardMode reward = RewardMode::kSuccess;
-  int threads = 1;  ///< worker threads (groups are split among them)
+  int threads = 1;  ///< worker threads (the agents, in chunks, and the plumes are split among them)
 };
 
 /// The most environments one VectorWorld holds (each takes a few kB, docs/vector.md).
@@ -152,7 +153,13 @@ class VectorWorld {
   void run_groups(void (VectorWorld::*job)(std::size_t));
   void reset_group(std::size_t g);
   void restart_group(std::size_t g);
-  void step_group(std::size_t g);
+  // one job per chunk of kChunk environments
+  void run_agents(const std::function<void(std::size_t)>& job);
+  void step_plume(std::size_t g);
+  // environment i's part of a decision's step step_no (0 to decision_interval): its command
+  // (step 0) or its sensing after the plume's step, then its move or, at the last, its
+  // observation, reward and infos
+  void agent_phase(std::size_t i, int step_no);
   void start_episode(std::size_t i, bool fresh_plume);
   void finish_decision(std::size_t i, const Observation* seen, int sensed, int odor_count);
   void write_info(std::size_t i);
@@ -171,6 +178,7 @@ class VectorWorld {
   // a pool of spec.threads - 1 workers that wait between calls
   class Pool;
   std::unique_ptr<Pool> pool_;
+  static constexpr std::size_t kChunk = 16;
 };
 
 }  // namespace plumetrace

@@ -13,6 +13,7 @@
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "support/loop_checks.hpp"
 #include "support/stepped_wind.hpp"
 
 namespace plumetrace {
@@ -539,77 +540,10 @@ TEST(Plume, SameSeedSamePlume) {
   }
 }
 
-}  // namespace
-}  // namespace plumetrace
-
-namespace plumetrace {
-namespace {
-
-// The scalar formulas of the plume's loops, one filament at a time and never vectorised.
-[[gnu::optimize("no-tree-vectorize")]] void scalar_step(
-    std::vector<double>& x, std::vector<double>& y, std::vector<double>& z, std::vector<double>& w,
-    const Vec3& d, std::uint64_t key, double stddev, double gamma, bool area = false) {
-  const auto n = static_cast<std::int64_t>(x.size());
-  const auto normals = [key](std::int64_t counter) {
-    float a, b;
-    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(counter)), a, b);
-    return std::pair<double, double>(a, b);
-  };
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto [a, b] = normals(2 * i);
-    x[i] += d.x + stddev * a;
-    y[i] += d.y + stddev * b;
-    w[i] = area ? std::sqrt(w[i] * w[i] + gamma) : w[i] + (gamma / 2.0) * (1.0 / w[i]);
-  }
-  for (std::int64_t j = 0; j < n / 2; ++j) {
-    const auto [a, b] = normals(2 * j + 1);
-    z[j] += d.z + stddev * a;
-    z[j + n / 2] += d.z + stddev * b;
-  }
-  if (n % 2 == 1) z[n - 1] += d.z + stddev * normals(n).first;
-}
-
+// drift_walk_grow (both width growths) and kernels (both kernels) against the scalar formulas
+// (tests/support/loop_checks.hpp; the 64-bit ARM build runs the same check, tests/bits)
 TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
-  Rng rng(8);
-  for (const std::int64_t n : {1, 2, 7, 64, 1001, 1600}) {
-    std::vector<double> x(n), y(n), z(n), w(n), h(n);
-    for (std::int64_t i = 0; i < n; ++i) {
-      x[i] = 16.0 * rng.uniform();
-      y[i] = rng.uniform() - 0.5;
-      z[i] = 0.1 * rng.uniform();
-      w[i] = 0.1 + 0.05 * rng.uniform();
-      h[i] = 1.0 / w[i];
-    }
-    // one step of each width growth (the paper's, then Farrell's): the loop the plume runs,
-    // against the scalar formulas
-    for (const bool area : {false, true}) {
-      auto sx = x, sy = y, sz = z, sw = w;
-      const Vec3 d{0.032, -0.001, 0.0005};
-      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, d, 0xabcdef + n,
-                             0.0032, 4e-7, area);
-      scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7, area);
-      for (std::int64_t i = 0; i < n; ++i) {
-        ASSERT_EQ(x[i], sx[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(y[i], sy[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(z[i], sz[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(w[i], sw[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(h[i], 1.0 / sw[i]) << "n " << n << " filament " << i << " area " << area;
-      }
-    }
-    // kernels at a point: the loop against kernel_value, per filament, for both kernels
-    for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {
-      const PlumeParams params = plume_preset(preset);
-      const Vec3 u{8.0, 0.1, 0.0};
-      std::vector<double> out(n);
-      const double scale = kernel_value(params, 1.0, 0.0);  // amount factor: w = 1 at d = 0
-      loops::kernels(u, x.data(), y.data(), z.data(), h.data(), n, scale, params.kernel,
-                     params.cutoff * params.cutoff, out.data());
-      for (std::int64_t i = 0; i < n; ++i) {
-        const double d2 = distance_squared(u, {x[i], y[i], z[i]});
-        ASSERT_EQ(out[i], kernel_value(params, w[i], d2)) << "n " << n << " filament " << i;
-      }
-    }
-  }
+  EXPECT_EQ(testing::plume_loops_mismatch(), "");
 }
 
 using testing::SteppedWind;

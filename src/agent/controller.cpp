@@ -5,6 +5,7 @@
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -23,7 +24,7 @@ double wrapped_cauchy(double rho, Rng& rng) {
   // inverse of the law's distribution function: phi = 2 atan((1 - rho) / (1 + rho) tan(pi (u -
   // 1/2))), u uniform
   const double u = rng.uniform();
-  return 2.0 * std::atan((1.0 - rho) / (1.0 + rho) * std::tan(kPi * (u - 0.5)));
+  return 2.0 * math::atan((1.0 - rho) / (1.0 + rho) * math::tan(kPi * (u - 0.5)));
 }
 
 int guess_plume_side(double surge_heading, double upwind_now, Rng& rng) {
@@ -34,7 +35,7 @@ int guess_plume_side(double surge_heading, double upwind_now, Rng& rng) {
 }
 
 double spiral_arc_length(double b, double theta) {
-  return 0.5 * b * (theta * std::sqrt(1.0 + theta * theta) + std::asinh(theta));
+  return 0.5 * b * (theta * std::sqrt(1.0 + theta * theta) + math::asinh(theta));
 }
 
 double spiral_angle_at(double b, double s, double guess) {
@@ -51,7 +52,7 @@ double spiral_angle_at(double b, double s, double guess) {
 
 double spiral_curvature(double b, double theta) {
   const double t2 = theta * theta;
-  return (t2 + 2.0) / (b * std::pow(t2 + 1.0, 1.5));
+  return (t2 + 2.0) / (b * math::pow(t2 + 1.0, 1.5));
 }
 
 void SpiralPath::start(double d_gap, double start_radius, int curl) {

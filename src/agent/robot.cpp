@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 namespace {
@@ -12,11 +14,11 @@ void drive(double k, double s, RobotState& state) {
   Pose& p = state.pose;
   const double dtheta = k * s;
   if (std::fabs(dtheta) < 1e-12) {
-    p.x += s * std::cos(p.heading);
-    p.y += s * std::sin(p.heading);
+    p.x += s * math::cos(p.heading);
+    p.y += s * math::sin(p.heading);
   } else {
-    p.x += (std::sin(p.heading + dtheta) - std::sin(p.heading)) / k;
-    p.y -= (std::cos(p.heading + dtheta) - std::cos(p.heading)) / k;
+    p.x += (math::sin(p.heading + dtheta) - math::sin(p.heading)) / k;
+    p.y -= (math::cos(p.heading + dtheta) - math::cos(p.heading)) / k;
     p.heading = wrap_angle(p.heading + dtheta);
   }
   state.odometer += s;
@@ -45,7 +47,7 @@ void drive_clear(const RobotParams& params, const Obstacle& obstacle, double k, 
 double contact_length(const Pose& pose, double k, const Vec2& center, double contact) {
   // already in contact: moving inward is blocked at once, moving outward is free
   const double wx = pose.x - center.x, wy = pose.y - center.y;
-  const double along = wx * std::cos(pose.heading) + wy * std::sin(pose.heading);
+  const double along = wx * math::cos(pose.heading) + wy * math::sin(pose.heading);
   const double q = wx * wx + wy * wy - contact * contact;
   if (q <= 0.0) return along < 0.0 ? 0.0 : INFINITY;
   if (k == 0.0) {
@@ -56,16 +58,16 @@ double contact_length(const Pose& pose, double k, const Vec2& center, double con
   }
   // arc about a = pose + (-sin h, cos h) / k: the centre is at angle phi = h + k u with
   // p - a = (sin phi, -cos phi) / k, so |p - c|^2 = contact^2 where D sin(phi - psi) = k m
-  const double ax = pose.x - std::sin(pose.heading) / k;
-  const double ay = pose.y + std::cos(pose.heading) / k;
+  const double ax = pose.x - math::sin(pose.heading) / k;
+  const double ay = pose.y + math::cos(pose.heading) / k;
   const double dx = center.x - ax, dy = center.y - ay;
   const double d2 = dx * dx + dy * dy;
   const double m = 0.5 * (1.0 / (k * k) + d2 - contact * contact);
   const double g = k * m / std::sqrt(d2);
   if (!(std::fabs(g) <= 1.0)) return INFINITY;
-  const double psi = std::atan2(dy, dx);
+  const double psi = math::atan2(dy, dx);
   double best = INFINITY;
-  for (const double phi : {psi + std::asin(g), psi + kPi - std::asin(g)}) {
+  for (const double phi : {psi + math::asin(g), psi + kPi - math::asin(g)}) {
     // the turn (rad) from the heading to phi in the arc's own direction
     double turn = std::fmod(k > 0.0 ? phi - pose.heading : pose.heading - phi, 2.0 * kPi);
     if (turn < 0.0) turn += 2.0 * kPi;

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 double FirstOrderSensor::gain(double tau, double dt, double& cached_dt, double& cached) const {
   if (dt != cached_dt) {
     cached_dt = dt;
-    cached = tau > 0.0 ? -std::expm1(-dt / tau) : 1.0;
+    cached = tau > 0.0 ? -math::expm1(-dt / tau) : 1.0;
   }
   return cached;
 }

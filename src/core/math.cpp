@@ -54,13 +54,44 @@ constexpr double kAtanLo[9] = {0.0,
                                0x1.1a62633145c07p-55};
 
 // exp: above this e^x overflows, below the other it rounds to 0
-constexpr double kExpMax = 0x1.62e42fefa39efp+9;  // ln(DBL_MAX), 709.78
+constexpr double kExpMax = 0x1.62e42fefa39efp+9;   // ln(DBL_MAX), 709.78
 constexpr double kExpMin = -0x1.74910d52d3052p+9;  // ln(2^-1075), -745.13
 
 // the nearest integer to x (|x| < 2^51), ties to even, as a double
 double nearest(double x) {
   constexpr double kShift = 0x1.8p52;
   return (x + kShift) - kShift;
+}
+
+// c[0] + z (c[1] + z (c[2] + ...)): a polynomial by Horner's rule
+template <std::size_t N>
+double horner(double z, const std::array<double, N>& c) {
+  double p = c[N - 1];
+  for (std::size_t i = N - 1; i-- > 0;) p = c[i] + z * p;
+  return p;
+}
+
+// 1 / n! for n = 0..22
+constexpr std::array<double, 23> kInvFactorial = [] {
+  std::array<double, 23> v{};
+  double f = 1.0;  // n!, exact to 22! in a double
+  for (int n = 0; n <= 22; ++n) {
+    if (n > 0) f *= n;
+    v[n] = 1.0 / f;
+  }
+  return v;
+}();
+
+// c[i] = sign^i / (first + step i)!
+template <std::size_t N>
+constexpr std::array<double, N> series(int first, int step, double sign) {
+  std::array<double, N> c{};
+  double sg = 1.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    c[i] = sg * kInvFactorial[first + step * static_cast<int>(i)];
+    sg *= sign;
+  }
+  return c;
 }
 
 // p 2^k for an integer k: exact unless the result is subnormal (one rounding) or overflows
@@ -88,26 +119,8 @@ double reduce_ln2(double x, double& k) {
 
 // e^r - 1 - r for |r| <= 0.75: the Taylor series to r^18 (its rest is below 2^-60 r^2)
 double expm1_rest(double r) {
-  constexpr double c[] = {1.0 / 2,
-                          1.0 / 6,
-                          1.0 / 24,
-                          1.0 / 120,
-                          1.0 / 720,
-                          1.0 / 5040,
-                          1.0 / 40320,
-                          1.0 / 362880,
-                          1.0 / 3628800,
-                          1.0 / 39916800,
-                          1.0 / 479001600,
-                          1.0 / 6227020800,
-                          1.0 / 87178291200.0,
-                          1.0 / 1307674368000.0,
-                          1.0 / 20922789888000.0,
-                          1.0 / 355687428096000.0,
-                          1.0 / 6402373705728000.0};  // 1 / 2!, ..., 1 / 18!
-  double p = c[16];
-  for (int i = 15; i >= 0; --i) p = c[i] + r * p;
-  return r * r * p;
+  static constexpr auto c = series<17>(2, 1, 1.0);  // 1 / 2!, ..., 1 / 18!
+  return r * r * horner(r, c);
 }
 
 // x = n pi / 2 + r + rl, |r| <= pi / 4, rl below r's last bit (for |x| < 2^30); returns n mod 4
@@ -138,28 +151,15 @@ int reduce_pio2(double x, double& r, double& rl) {
 // sin(r + rl) and cos(r + rl) for |r| <= pi / 4, rl below r's last bit: Taylor series to r^17
 // and r^18 (rests below 2^-57), rl to first order
 double sin_kernel(double r, double rl) {
+  static constexpr auto c = series<8>(3, 2, -1.0);  // 1 / 3!, -1 / 5!, ..., -1 / 17!
   const double z = r * r;
-  const double p =
-      -1.0 / 6 +
-      z * (1.0 / 120 +
-           z * (-1.0 / 5040 +
-                z * (1.0 / 362880 +
-                     z * (-1.0 / 39916800 +
-                          z * (1.0 / 6227020800 +
-                               z * (-1.0 / 1307674368000 + z * (1.0 / 355687428096000)))))));
-  return r + (r * z * p + rl * (1.0 - 0.5 * z));
+  return r + (r * z * -horner(z, c) + rl * (1.0 - 0.5 * z));
 }
 
 double cos_kernel(double r, double rl) {
+  static constexpr auto c = series<8>(4, 2, -1.0);  // 1 / 4!, -1 / 6!, ..., -1 / 18!
   const double z = r * r;
-  const double p =
-      1.0 / 24 +
-      z * (-1.0 / 720 +
-           z * (1.0 / 40320 +
-                z * (-1.0 / 3628800 +
-                     z * (1.0 / 479001600 +
-                          z * (-1.0 / 87178291200.0 +
-                               z * (1.0 / 20922789888000.0 + z * (-1.0 / 6402373705728000.0)))))));
+  const double p = horner(z, c);
   // why: 1 - z / 2 as w plus what rounding w lost, exactly (w is within a factor 2 of 1)
   const double hz = 0.5 * z;
   const double w = 1.0 - hz;
@@ -224,16 +224,12 @@ void log_parts(double x, double& hi, double& lo) {
   exact_product(sh, d, p, pl);
   const double sl = (((f - p) - pl) - sh * dl) / d;
   const double z = sh * sh;
-  const double r =
-      z * (2.0 / 3 +
-           z * (2.0 / 5 +
-                z * (2.0 / 7 +
-                     z * (2.0 / 9 +
-                          z * (2.0 / 11 +
-                               z * (2.0 / 13 +
-                                    z * (2.0 / 15 +
-                                         z * (2.0 / 17 +
-                                              z * (2.0 / 19 + z * (2.0 / 21 + z * (2.0 / 23)))))))))));
+  static constexpr auto c = [] {  // 2/3, 2/5, ..., 2/23
+    std::array<double, 11> v{};
+    for (int n = 1; n <= 11; ++n) v[n - 1] = 2.0 / (2 * n + 1);
+    return v;
+  }();
+  const double r = z * horner(z, c);
   const double de = static_cast<double>(e);
   // hi + lo = (de ln2_hi + 2 sh) + (2 sl + sh R + de ln2_lo); the first two are exact, and
   // their sum is split exactly (Fast2Sum, larger first)
@@ -454,18 +450,9 @@ double sinh(double x) {
   double v;
   if (ax < 1.0) {
     // the Taylor series to a^21 (rest below 2^-60 a): a + a z (1/3! + z (1/5! + ...)), z = a^2
+    static constexpr auto c = series<10>(3, 2, 1.0);  // 1 / 3!, 1 / 5!, ..., 1 / 21!
     const double z = ax * ax;
-    const double p =
-        1.0 / 6 +
-        z * (1.0 / 120 +
-             z * (1.0 / 5040 +
-                  z * (1.0 / 362880 +
-                       z * (1.0 / 39916800 +
-                            z * (1.0 / 6227020800 +
-                                 z * (1.0 / 1307674368000 +
-                                      z * (1.0 / 355687428096000 +
-                                           z * (1.0 / 121645100408832000.0 +
-                                                z * (1.0 / 51090942171709440000.0)))))))));
+    const double p = horner(z, c);
     v = ax + ax * z * p;
   } else if (ax < 22.0) {
     // (e^a - e^-a) / 2 = (E + E / (E + 1)) / 2 with E = e^a - 1, no cancellation

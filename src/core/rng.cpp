@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 namespace {
@@ -18,12 +20,12 @@ struct ZigguratTable {
   std::array<double, kLayers> ratio{};
 
   ZigguratTable() {
-    const double f = std::exp(-0.5 * kR * kR);
+    const double f = math::exp(-0.5 * kR * kR);
     x[0] = kV / f;
     x[1] = kR;
     x[kLayers] = 0.0;
     for (int i = 2; i < kLayers; ++i) {
-      x[i] = std::sqrt(-2.0 * std::log(kV / x[i - 1] + std::exp(-0.5 * x[i - 1] * x[i - 1])));
+      x[i] = std::sqrt(-2.0 * math::log(kV / x[i - 1] + math::exp(-0.5 * x[i - 1] * x[i - 1])));
     }
     for (int i = 0; i < kLayers; ++i) ratio[i] = x[i + 1] / x[i];
   }
@@ -83,15 +85,15 @@ double Rng::normal_slow(double u, int layer) {
       // tail beyond kR (Marsaglia 1964)
       double x, y;
       do {
-        x = std::log(uniform_open0()) / kR;
-        y = std::log(uniform_open0());
+        x = math::log(uniform_open0()) / kR;
+        y = math::log(uniform_open0());
       } while (-2.0 * y < x * x);
       return u < 0.0 ? x - kR : kR - x;
     }
     // wedge between two layers
     const double x = u * t.x[layer];
-    const double f0 = std::exp(-0.5 * (t.x[layer] * t.x[layer] - x * x));
-    const double f1 = std::exp(-0.5 * (t.x[layer + 1] * t.x[layer + 1] - x * x));
+    const double f0 = math::exp(-0.5 * (t.x[layer] * t.x[layer] - x * x));
+    const double f1 = math::exp(-0.5 * (t.x[layer + 1] * t.x[layer + 1] - x * x));
     if (f1 + uniform() * (f0 - f1) < 1.0) return x;
     // rejected: draw again
     const std::uint64_t bits = next_u64();

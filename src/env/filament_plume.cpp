@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "plume_loops.hpp"
+#include "plumetrace/core/math.hpp"
 #include "vector_math.hpp"
 
 // why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
@@ -269,7 +270,7 @@ double kernel_value(const PlumeParams& params, double w, double d2) {
 
 double kernel_reach(const PlumeParams& params, double w, double floor) {
   // the peak over the floor, whose log the kernel's exponent must not exceed
-  const double ratio = std::log(kernel_scale(params) / (w * w * w * floor));
+  const double ratio = math::log(kernel_scale(params) / (w * w * w * floor));
   if (!(ratio >= 0.0)) return 0.0;
   const double d = params.kernel == Kernel::kGaussian ? w * std::sqrt(ratio) : w * w * ratio;
   return std::min(d, params.cutoff);

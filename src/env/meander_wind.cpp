@@ -6,6 +6,7 @@
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 #include "wind_loops.hpp"
 
 namespace plumetrace {
@@ -23,18 +24,18 @@ struct Response {
 
 Response response(double mu, double q, double s) {
   if (q < 0.0) {
-    const double w = std::sqrt(-q), e = std::exp(mu * s);
-    return {e * std::cos(w * s), e * std::sin(w * s) / w};
+    const double w = std::sqrt(-q), e = math::exp(mu * s);
+    return {e * math::cos(w * s), e * math::sin(w * s) / w};
   }
   if (q == 0.0) {
-    const double e = std::exp(mu * s);
+    const double e = math::exp(mu * s);
     return {e, e * s};
   }
   const double w = std::sqrt(q);
-  const double a = std::exp((mu + w) * s), b = std::exp((mu - w) * s);
+  const double a = math::exp((mu + w) * s), b = math::exp((mu - w) * s);
   // why: the difference of the two exponentials cancels for small w s, sinh does not
   const double sinh_part =
-      w * s < 1.0 ? std::exp(mu * s) * std::sinh(w * s) / w : 0.5 * (a - b) / w;
+      w * s < 1.0 ? math::exp(mu * s) * math::sinh(w * s) / w : 0.5 * (a - b) / w;
   return {0.5 * (a + b), sinh_part};
 }
 

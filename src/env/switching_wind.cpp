@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 namespace {
@@ -12,7 +14,7 @@ constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 
 // the mean wind turned by `angle` (rad) about the vertical
 Vec3 turned(const Vec3& mean, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
+  const double c = math::cos(angle), s = math::sin(angle);
   return {mean.x * c - mean.y * s, mean.x * s + mean.y * c, mean.z};
 }
 
@@ -53,7 +55,7 @@ SwitchingWind::SwitchingWind(const SwitchingParams& params, const WindContext& c
       time = start + k * params.interval +
              (2.0 * rng.uniform() - 1.0) * params.jitter * params.interval;
     } else if (k > 0) {
-      time += -std::log(rng.uniform_open0()) * params.interval;
+      time += -math::log(rng.uniform_open0()) * params.interval;
     }
     // from where: the direction just before it, partway through the last turn
     const double from =

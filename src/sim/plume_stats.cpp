@@ -7,6 +7,7 @@
 #include "plumetrace/agent/controller.hpp"
 #include "plumetrace/agent/sensors.hpp"
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 #include "plumetrace/core/parallel.hpp"
 #include "plumetrace/core/rng.hpp"
 #include "plumetrace/sim/world.hpp"
@@ -17,7 +18,7 @@ SensorPath straight_path(Vec2 from, double heading, double length, double z, dou
                          double dt) {
   SensorPath path;
   const double step = speed * dt;
-  const double c = std::cos(heading), s = std::sin(heading);
+  const double c = math::cos(heading), s = math::sin(heading);
   // why: the count first, so that rounding never adds a point beyond length
   const auto n = static_cast<long>(std::floor(std::max(0.0, length) / step + 1e-9));
   path.points.reserve(static_cast<std::size_t>(n) + 1);
@@ -225,7 +226,7 @@ double measured_upwind(const Scenario& scenario, const Environment& env, const P
 double room_ahead(const Scenario& scenario, Vec2 p, double heading, double x_end) {
   const auto& a = scenario.arena;
   const double r = scenario.robot.radius;
-  const double c = std::cos(heading), s = std::sin(heading);
+  const double c = math::cos(heading), s = math::sin(heading);
   double length = INFINITY;
   if (c < 0.0) length = std::min(length, (std::max(x_end, a.x_min + r) - p.x) / c);
   if (c > 0.0) length = std::min(length, (a.x_max - r - p.x) / c);

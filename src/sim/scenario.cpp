@@ -11,6 +11,8 @@
 #include <set>
 #include <sstream>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 namespace {
@@ -548,7 +550,7 @@ std::vector<Pose> point_starts(const Scenario& scenario) {
   std::vector<Pose> starts;
   starts.reserve(static_cast<std::size_t>(n));
   // robot 0 at the start, the others beside it, alternately left and right of its heading
-  const Vec2 left{-std::sin(robot.start.heading), std::cos(robot.start.heading)};
+  const Vec2 left{-math::sin(robot.start.heading), math::cos(robot.start.heading)};
   for (int k = 0; k < n; ++k) {
     if (k > 0 && has_own_start(scenario, k)) {
       starts.push_back(member_scenario(scenario, k).robot.start);
@@ -614,7 +616,7 @@ void check_team_start(const Scenario& scenario) {
                           "start region (start.region)");
       }
       if (scenario.source.solid_radius > 0.0 &&
-          std::hypot(p.x - scenario.source.center.x, p.y - scenario.source.center.y) <= keep_off) {
+          math::hypot(p.x - scenario.source.center.x, p.y - scenario.source.center.y) <= keep_off) {
         throw ConfigError((own ? own_keys(k) : std::string("team.count, team.spacing")) +
                           ": robot " + std::to_string(k) +
                           " would start inside the source's solid body");
@@ -623,10 +625,10 @@ void check_team_start(const Scenario& scenario) {
       for (int j = 0; j < team.count; ++j) {
         const Pose& q = starts[static_cast<std::size_t>(j)];
         if (j == k || (j > k && has_own_start(scenario, j))) continue;
-        if (std::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) {
+        if (math::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) {
           throw ConfigError(own_keys(k) + ": robot " + std::to_string(k) +
                             " would start inside robot " + std::to_string(j) + " (" +
-                            bound_text(std::hypot(p.x - q.x, p.y - q.y)) +
+                            bound_text(math::hypot(p.x - q.x, p.y - q.y)) +
                             " m apart, less than two radii, " + bound_text(2.0 * r) +
                             " m); move it, or set team.contact = 'off'");
         }
@@ -656,7 +658,7 @@ void check_team_start(const Scenario& scenario) {
     // the point of the free box nearest the disc's centre lies inside the disc
     const double cx = ox + st.cx, cy = oy + st.cy;
     const double nx = std::clamp(cx, fx0, fx1), ny = std::clamp(cy, fy0, fy1);
-    fits = std::hypot(nx - cx, ny - cy) < st.radius;
+    fits = math::hypot(nx - cx, ny - cy) < st.radius;
   }
   if (!fits) {
     throw ConfigError(keys + ": no robot fits in the start region (" +
@@ -737,7 +739,7 @@ void validate(const Scenario& scenario) {
            bound_text(source + offset) + " m; set robot.start_offset_" + a + " or robot.start_" +
            a + ")";
   };
-  if (solid > 0.0 && std::hypot(start.x - src.x, start.y - src.y) <= solid + r) {
+  if (solid > 0.0 && math::hypot(start.x - src.x, start.y - src.y) <= solid + r) {
     throw ConfigError(
         "robot.start_x, robot.start_y: the robot must start clear of the solid source "
         "(source.solid_radius)");

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "plumetrace/core/config.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -29,8 +30,8 @@ class ActionController : public Controller {
 };
 
 double distance_to_source(const Scenario& scenario, const RobotState& robot) {
-  return std::hypot(robot.pose.x - scenario.source.center.x,
-                    robot.pose.y - scenario.source.center.y);
+  return math::hypot(robot.pose.x - scenario.source.center.x,
+                     robot.pose.y - scenario.source.center.y);
 }
 
 }  // namespace

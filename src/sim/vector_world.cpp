@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "plumetrace/core/config.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -118,8 +119,8 @@ class HeldController : public Controller {
 };
 
 double source_distance(const Scenario& scenario, const RobotState& robot) {
-  return std::hypot(robot.pose.x - scenario.source.center.x,
-                    robot.pose.y - scenario.source.center.y);
+  return math::hypot(robot.pose.x - scenario.source.center.x,
+                     robot.pose.y - scenario.source.center.y);
 }
 
 }  // namespace

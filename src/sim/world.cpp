@@ -7,6 +7,7 @@
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 
 namespace plumetrace {
@@ -157,7 +158,7 @@ void Agent::propose(Command command) {
     const Vec2 d = rotate(command.source, start_.heading);
     declared_ = {start_.x + d.x, start_.y + d.y};
     const auto& src = scenario_.source.center;
-    declaration_error_ = std::hypot(declared_.x - src.x, declared_.y - src.y);
+    declaration_error_ = math::hypot(declared_.x - src.x, declared_.y - src.y);
     outcome_ = declaration_error_ <= scenario_.supervisor.declaration_radius
                    ? Outcome::kSuccess
                    : Outcome::kWrongDeclaration;
@@ -188,7 +189,7 @@ void Agent::slide(Vec2 to) {
   const auto& src = scenario_.source;
   const double r = scenario_.robot.radius;
   const double contact = src.solid_radius + r;
-  if ((src.solid_radius > 0.0 && std::hypot(to.x - src.center.x, to.y - src.center.y) < contact) ||
+  if ((src.solid_radius > 0.0 && math::hypot(to.x - src.center.x, to.y - src.center.y) < contact) ||
       (scenario_.supervisor.walls == WallRule::kBlock &&
        !clear_of_walls(scenario_.arena, r, to.x, to.y))) {
     block();
@@ -196,7 +197,7 @@ void Agent::slide(Vec2 to) {
   }
   proposed_.pose.x = to.x;
   proposed_.pose.y = to.y;
-  proposed_.odometer = robot_.odometer + std::hypot(to.x - robot_.pose.x, to.y - robot_.pose.y);
+  proposed_.odometer = robot_.odometer + math::hypot(to.x - robot_.pose.x, to.y - robot_.pose.y);
   proposed_.touching = false;
   moving_ = to.x != robot_.pose.x || to.y != robot_.pose.y;
 }
@@ -269,15 +270,15 @@ std::vector<Pose> team_starts(const Scenario& scenario, std::uint64_t seed, std:
         // uniform in the disc: radius by the square root of a uniform
         const double rho = st.radius * std::sqrt(rng.uniform());
         const double phi = 2.0 * kPi * rng.uniform();
-        p = {st.cx + rho * std::cos(phi), st.cy + rho * std::sin(phi)};
+        p = {st.cx + rho * math::cos(phi), st.cy + rho * math::sin(phi)};
       }
       p = {origin.x + p.x, origin.y + p.y};
       const Pose pose{p.x, p.y, heading(rng)};
       if (!clear_of_walls(scenario.arena, r, p.x, p.y)) continue;
-      if (std::hypot(p.x - src.center.x, p.y - src.center.y) <= keep_off) continue;
+      if (math::hypot(p.x - src.center.x, p.y - src.center.y) <= keep_off) continue;
       bool overlaps = false;
       for (const Pose& q : starts) {
-        if (contact && std::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) overlaps = true;
+        if (contact && math::hypot(p.x - q.x, p.y - q.y) < 2.0 * r) overlaps = true;
       }
       if (overlaps) continue;
       if (st.condition == StartCondition::kInOdor && !sense_odor(scenario.odor, *env.odor, pose)) {
@@ -553,7 +554,7 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
   std::vector<char>& near = hit_;
   for (const std::size_t i : live) {
     const Vec2 p = agents_[i]->position(), q = agents_[i]->proposed_position();
-    move[i] = agents_[i]->proposes_move() ? std::hypot(q.x - p.x, q.y - p.y) : 0.0;
+    move[i] = agents_[i]->proposes_move() ? math::hypot(q.x - p.x, q.y - p.y) : 0.0;
     near[i] = 0;
   }
   bool any_near = false;
@@ -579,7 +580,7 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
     for (const std::size_t j : live) {
       if (j == i) continue;
       const Vec2 pj = agents_[j]->position();
-      const double dist = std::hypot(pj.x - p.x, pj.y - p.y);
+      const double dist = math::hypot(pj.x - p.x, pj.y - p.y);
       if (dist >= 2.0 * r + move[i] + move[j]) continue;
       normals_.push_back({(pj.x - p.x) / dist, (pj.y - p.y) / dist});
       // each of the two may close half the gap, so together they never overlap
@@ -638,7 +639,7 @@ void World::send_messages(std::size_t begin, std::size_t end) {
     for (std::size_t j = begin; j < end; ++j) {
       if (j == i || agents_[j]->done() || !(agents_[j]->reads() & kReadsMessages)) continue;
       const Vec2 p = sent_from_[j];
-      const double d = std::hypot(p.x - sent_from_[i].x, p.y - sent_from_[i].y);
+      const double d = math::hypot(p.x - sent_from_[i].x, p.y - sent_from_[i].y);
       if (d <= team.range) agents_[j]->receive(agents_[j]->steps() + lag, m);
     }
   }

@@ -110,8 +110,8 @@ void print_plume(const std::string& name, const std::vector<std::string>& overri
   for (int k = 0; k < steps; ++k) step(env, s.sim.dt);
   Hash filaments;
   const OdorSnapshot snap = env.odor->snapshot();
-  for (const auto& column : {snap.filaments.x, snap.filaments.y, snap.filaments.z,
-                             snap.filaments.w}) {
+  for (const auto& column :
+       {snap.filaments.x, snap.filaments.y, snap.filaments.z, snap.filaments.w}) {
     for (const double v : column) filaments.add(v);
   }
   std::printf("plume %s filaments=%zu hash=%s\n", name.c_str(), snap.filaments.size(),
@@ -167,8 +167,9 @@ int main(int argc, char** argv) {
   print_rng();
   print_plume("default", {}, 200);
   print_plume("meander", {"wind.model=meander"}, 200);
-  print_plume("switching", {"wind.model=switching", "switching.first=-5", "switching.transition=2",
-                            "switching.draw=uniform"},
+  print_plume("switching",
+              {"wind.model=switching", "switching.first=-5", "switching.transition=2",
+               "switching.draw=uniform"},
               200);
   print_plume("farrell", {"plume.dispersion=farrell", "plume.kernel=gaussian"}, 200);
 
@@ -180,9 +181,9 @@ int main(int argc, char** argv) {
     print_run(std::string(algorithm_name(a)), o);
   }
   if (!quick) {
-    print_run("meander-surge-spiral", {"wind.model=meander", "robot.start_x=6.0",
-                                       "supervisor.timeout=40.0",
-                                       "controller.algorithm=surge-spiral"});
+    print_run("meander-surge-spiral",
+              {"wind.model=meander", "robot.start_x=6.0", "supervisor.timeout=40.0",
+               "controller.algorithm=surge-spiral"});
     print_run("switching-casting",
               {"wind.model=switching", "switching.first=5", "switching.timing=random",
                "switching.count=3", "switching.draw=normal", "robot.start_x=6.0",

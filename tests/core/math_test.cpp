@@ -1,6 +1,8 @@
 // src/core/math.cpp: the model's elementary functions, measured against the C library's long
 // double versions (64 significant bits on x86-64, 113 on 64-bit ARM) and checked on C's special
 // values. That they give the same bits on every machine is checked by tests/bits (aarch64_golden).
+#include "plumetrace/core/math.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -11,7 +13,6 @@
 #include <limits>
 #include <numbers>
 
-#include "plumetrace/core/math.hpp"
 #include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
@@ -60,7 +61,7 @@ std::function<double(Rng&)> log_uniform(int lo, int hi, bool sign = false) {
   };
 }
 
-constexpr int kN = 200000;
+constexpr int kN = 100000;
 
 TEST(Math, ExpAndExpm1AreWithinAnUlpOrSo) {
   expect_within("exp", 1.0, kN, uniform(-745.0, 709.7), math::exp,
@@ -78,9 +79,10 @@ TEST(Math, LogAndLog1pAreWithinAnUlp) {
                 [](long double x) { return std::log(x); });
   expect_within("log near 1", 0.55, kN, uniform(0.5, 2.0), math::log,
                 [](long double x) { return std::log(x); });
-  expect_within("log1p", 0.7, kN, log_uniform(-60, 10, true),
-                [](double x) { return math::log1p(x < -1.0 ? -x : x); },
-                [](long double x) { return std::log1p(x < -1.0L ? -x : x); });
+  expect_within(
+      "log1p", 0.7, kN, log_uniform(-60, 10, true),
+      [](double x) { return math::log1p(x < -1.0 ? -x : x); },
+      [](long double x) { return std::log1p(x < -1.0L ? -x : x); });
 }
 
 TEST(Math, SinCosWithinAnUlpAndTanWithinTwoUpToAMillionRadians) {
@@ -99,12 +101,12 @@ TEST(Math, ArcTangentsAndArcSinesAreWithinTwoUlps) {
                 [](long double x) { return std::atan(x); });
   // atan2 of (1, x) and (x, 1) and (-1, x): every octant
   for (const double y : {1.0, -1.0}) {
-    expect_within("atan2(y, x)", 1.5, kN, uniform(-20.0, 20.0),
-                  [y](double x) { return math::atan2(y, x); },
-                  [y](long double x) { return std::atan2(y, x); });
-    expect_within("atan2(x, y)", 1.5, kN, uniform(-20.0, 20.0),
-                  [y](double x) { return math::atan2(x, y); },
-                  [y](long double x) { return std::atan2(x, y); });
+    expect_within(
+        "atan2(y, x)", 1.5, kN, uniform(-20.0, 20.0), [y](double x) { return math::atan2(y, x); },
+        [y](long double x) { return std::atan2(y, x); });
+    expect_within(
+        "atan2(x, y)", 1.5, kN, uniform(-20.0, 20.0), [y](double x) { return math::atan2(x, y); },
+        [y](long double x) { return std::atan2(x, y); });
   }
   expect_within("asin", 2.0, kN, uniform(-1.0, 1.0), math::asin,
                 [](long double x) { return std::asin(x); });
@@ -114,13 +116,14 @@ TEST(Math, ArcTangentsAndArcSinesAreWithinTwoUlps) {
 
 TEST(Math, HypotSinhAndPowAreWithinAnUlpOrSoForModestExponents) {
   for (const double y : {0.3, 3.0, 1e-200}) {
-    expect_within("hypot", 0.55, kN, log_uniform(-40, 40, true),
-                  [y](double x) { return math::hypot(x, y); },
-                  [y](long double x) { return std::hypot(x, static_cast<long double>(y)); });
+    expect_within(
+        "hypot", 0.55, kN, log_uniform(-40, 40, true), [y](double x) { return math::hypot(x, y); },
+        [y](long double x) { return std::hypot(x, static_cast<long double>(y)); });
   }
-  expect_within("hypot of large numbers", 0.9, kN, log_uniform(900, 1000, true),
-                [](double x) { return math::hypot(x, 1e300); },
-                [](long double x) { return std::hypot(x, 1e300L); });
+  expect_within(
+      "hypot of large numbers", 0.9, kN, log_uniform(900, 1000, true),
+      [](double x) { return math::hypot(x, 1e300); },
+      [](long double x) { return std::hypot(x, 1e300L); });
   expect_within("sinh", 1.4, kN, uniform(-700.0, 700.0), math::sinh,
                 [](long double x) { return std::sinh(x); });
   expect_within("sinh near 0", 1.4, kN, log_uniform(-40, 1, true), math::sinh,
@@ -128,13 +131,15 @@ TEST(Math, HypotSinhAndPowAreWithinAnUlpOrSoForModestExponents) {
   // the powers the random walks and the spiral take: lengths to exponents in [-2, 0), their
   // inverses, 1.5, and small numbers to whole exponents
   for (const double y : {-2.0, -1.3, -0.5, -1.0 / 1.3, 1.5, 3.0, 17.0}) {
-    expect_within("pow", 1.2, kN, uniform(0.01, 20.0), [y](double x) { return math::pow(x, y); },
-                  [y](long double x) { return std::pow(x, static_cast<long double>(y)); });
+    expect_within(
+        "pow", 1.2, kN, uniform(0.01, 20.0), [y](double x) { return math::pow(x, y); },
+        [y](long double x) { return std::pow(x, static_cast<long double>(y)); });
   }
   // why: log x is carried to about 2^-60 of itself, so the error grows with |y log x|
-  expect_within("pow of large exponents", 16.0, kN, uniform(0.5, 2.0),
-                [](double x) { return math::pow(x, 700.0); },
-                [](long double x) { return std::pow(x, 700.0L); });
+  expect_within(
+      "pow of large exponents", 16.0, kN, uniform(0.5, 2.0),
+      [](double x) { return math::pow(x, 700.0); },
+      [](long double x) { return std::pow(x, 700.0L); });
 }
 
 TEST(Math, ExactCasesAreExact) {

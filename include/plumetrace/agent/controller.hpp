@@ -8,6 +8,7 @@
 #include "plumetrace/agent/measurement.hpp"
 #include "plumetrace/core/config.hpp"
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/math.hpp"
 #include "plumetrace/core/rng.hpp"
 
 namespace plumetrace {
@@ -133,7 +134,7 @@ class Leg {
   Vec2 start_point() const { return start_; }
   /// Where the leg ends if it is driven to its length (m, odometry frame).
   Vec2 end_point() const {
-    return {start_.x + length_ * std::cos(heading_), start_.y + length_ * std::sin(heading_)};
+    return {start_.x + length_ * math::cos(heading_), start_.y + length_ * math::sin(heading_)};
   }
 
  private:

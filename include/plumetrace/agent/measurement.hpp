@@ -5,6 +5,7 @@
 #include <span>
 
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -13,9 +14,9 @@ namespace plumetrace {
 /// so that what nobody asks for is not computed: the paper's binary controllers ask for nothing
 /// more and pay nothing new (docs/agents.md).
 enum Reads : unsigned {
-  kReadsBinary = 0,             ///< the binary odor, time, odometry and the wind probe only
-  kReadsConcentration = 1u,     ///< the odor sensor's reading (Observation::concentration)
-  kReadsMessages = 1u << 1,     ///< messages from teammates (Observation::messages)
+  kReadsBinary = 0,          ///< the binary odor, time, odometry and the wind probe only
+  kReadsConcentration = 1u,  ///< the odor sensor's reading (Observation::concentration)
+  kReadsMessages = 1u << 1,  ///< messages from teammates (Observation::messages)
 };
 
 /// Numbers in one message (doubles): a position estimate and two more, or anything else.
@@ -60,7 +61,7 @@ class WindProbe {
 
 /// Upwind heading (rad, world frame) from a wind sample in the robot frame and the robot heading.
 inline double upwind_heading(const Vec2& wind_body, double robot_heading) {
-  return wrap_angle(robot_heading + std::atan2(-wind_body.y, -wind_body.x));
+  return wrap_angle(robot_heading + math::atan2(-wind_body.y, -wind_body.x));
 }
 
 /// Kinds of motion a controller can command.

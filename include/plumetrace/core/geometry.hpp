@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 /// A 3-D vector (m or m/s, world frame unless named otherwise).
@@ -43,7 +45,7 @@ inline double wrap_angle(double a) {
 
 /// Rotates a planar vector by angle a (rad).
 inline Vec2 rotate(const Vec2& v, double a) {
-  const double c = std::cos(a), s = std::sin(a);
+  const double c = math::cos(a), s = math::sin(a);
   return {c * v.x - s * v.y, s * v.x + c * v.y};
 }
 

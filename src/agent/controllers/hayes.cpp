@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "plumetrace/core/math.hpp"
+
 namespace plumetrace {
 
 Hayes::Hayes(const HayesParams& params, Rng rng)
@@ -42,7 +44,7 @@ bool Hayes::heads_to(const Vec2& hit) const {
   // downwind of its own last hit: the upwind direction is that of its last surge
   if (!has_hit_) return true;
   const double up = heading_ + params_.origin_heading;
-  return (hit.x - last_hit_.x) * std::cos(up) + (hit.y - last_hit_.y) * std::sin(up) >= 0.0;
+  return (hit.x - last_hit_.x) * math::cos(up) + (hit.y - last_hit_.y) * math::sin(up) >= 0.0;
 }
 
 bool Hayes::declares(Vec2& where) const {
@@ -122,7 +124,7 @@ Command Hayes::step(const Observation& obs, WindProbe& wind) {
   }
   if (state_ == State::kGoto) {
     const Vec2 t = from_team(target_);
-    if (std::hypot(t.x - here.x, t.y - here.y) <= params_.d_arrive) {
+    if (math::hypot(t.x - here.x, t.y - here.y) <= params_.d_arrive) {
       // there without odor: look for the plume around the teammate's hit
       begin_spiral(params_.d_gap, obs.odometer);
       state_ = State::kSpiral;
@@ -138,7 +140,7 @@ Command Hayes::step(const Observation& obs, WindProbe& wind) {
       break;
     case State::kGoto: {
       const Vec2 t = from_team(target_);
-      command = Command::go(std::atan2(t.y - here.y, t.x - here.x));
+      command = Command::go(math::atan2(t.y - here.y, t.x - here.x));
       break;
     }
     case State::kFind:
@@ -172,7 +174,7 @@ Snapshot Hayes::snapshot() const {
     s.path = {here, from_team(target_)};
   } else if (state_ == State::kSurge) {
     const double left = std::max(0.0, params_.d_surge - (odometer_ - last_hit_odometer_));
-    s.path = {here, {here.x + left * std::cos(heading_), here.y + left * std::sin(heading_)}};
+    s.path = {here, {here.x + left * math::cos(heading_), here.y + left * math::sin(heading_)}};
   }
   return s;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -31,7 +32,7 @@ double scaled_k0_large(double x) {
 // K0(x) for 0 < x <= 2: Abramowitz & Stegun 9.8.5 (error below 1e-8)
 double k0_small(double x) {
   const double y = x * x / 4.0;
-  return -std::log(x / 2.0) * bessel_i0_small(x) +
+  return -math::log(x / 2.0) * bessel_i0_small(x) +
          (-0.57721566 +
           y * (0.42278420 +
                y * (0.23069756 +
@@ -40,21 +41,21 @@ double k0_small(double x) {
 
 // -q0 ln q0 - q1 ln q1 for q0 = exp(-mu), the entropy (nats) of hit / no hit at mean mu
 double hit_entropy(double mu, double q0, double q1) {
-  return q1 > 0.0 ? q0 * mu - q1 * std::log(q1) : 0.0;
+  return q1 > 0.0 ? q0 * mu - q1 * math::log(q1) : 0.0;
 }
 
-double xlogx(double x) { return x > 0.0 ? x * std::log(x) : 0.0; }
+double xlogx(double x) { return x > 0.0 ? x * math::log(x) : 0.0; }
 
 }  // namespace
 
 double bessel_k0(double x) {
   if (x <= 2.0) return k0_small(x);
-  return std::exp(-x) / std::sqrt(x) * scaled_k0_large(x);
+  return math::exp(-x) / std::sqrt(x) * scaled_k0_large(x);
 }
 
 double log_bessel_k0(double x) {
-  if (x <= 2.0) return std::log(k0_small(x));
-  return -x - 0.5 * std::log(x) + std::log(scaled_k0_large(x));
+  if (x <= 2.0) return math::log(k0_small(x));
+  return -x - 0.5 * math::log(x) + math::log(scaled_k0_large(x));
 }
 
 double infotaxis_lambda(double diffusivity, double lifetime, double wind_speed) {
@@ -67,7 +68,7 @@ double log_encounter_rate(const InfotaxisParams& p, double d, double s) {
   // why: the formula holds for d >> a; the searcher's own cell, where d -> 0, is never used
   // (the update removes it), so any finite value there does
   const double r = std::max(d, p.detector_size);
-  return std::log(p.emission_rate) - std::log(std::log(lambda / p.detector_size)) +
+  return math::log(p.emission_rate) - math::log(math::log(lambda / p.detector_size)) +
          p.wind_speed * s / (2.0 * p.diffusivity) + log_bessel_k0(r / lambda);
 }
 
@@ -83,7 +84,7 @@ InfotaxisBelief::InfotaxisBelief(const InfotaxisParams& p, int nx, int ny, Vec2 
       const Vec2 r{di * p.cell, dj * p.cell};
       const double s = r.x * downwind.x + r.y * downwind.y;
       rate_[static_cast<std::size_t>(dj + ny - 1) * (2 * nx - 1) + (di + nx - 1)] =
-          std::exp(log_encounter_rate(p, std::hypot(r.x, r.y), s));
+          math::exp(log_encounter_rate(p, math::hypot(r.x, r.y), s));
     }
   }
 }
@@ -102,7 +103,7 @@ void InfotaxisBelief::update(int i, int j, bool hit, double duration) {
     for (int k = 0; k < nx_; ++k) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
       const double mu = rate(i, j, k, l) * duration;
-      scratch_[x] = p_[x] * (hit ? -std::expm1(-mu) : std::exp(-mu));
+      scratch_[x] = p_[x] * (hit ? -math::expm1(-mu) : math::exp(-mu));
       prior += p_[x];
       posterior += scratch_[x];
     }
@@ -137,7 +138,7 @@ double InfotaxisBelief::expected_entropy(int i, int j, double duration, double e
       const double q = p_[x];
       if (x == here || q == 0.0) continue;
       const double mu = rate(i, j, k, l) * duration;
-      const double q0 = std::exp(-mu), q1 = -std::expm1(-mu);
+      const double q0 = math::exp(-mu), q1 = -math::expm1(-mu);
       rho0 += q * q0;
       rho1 += q * q1;
       sum_h += q * hit_entropy(mu, q0, q1);
@@ -226,7 +227,7 @@ void Infotaxis::start(const Observation& obs, WindProbe& wind) {
   i0_ = on_x ? behind : across;
   j0_ = on_x ? across : behind;
   // the model's wind: the measured direction itself, not the grid's axis
-  belief_ = InfotaxisBelief(params_, nx, ny, {-std::cos(upwind), -std::sin(upwind)});
+  belief_ = InfotaxisBelief(params_, nx, ny, {-math::cos(upwind), -math::sin(upwind)});
   blocked_.assign(static_cast<std::size_t>(nx) * ny, 0);
   ci_ = i0_;
   cj_ = j0_;
@@ -267,7 +268,7 @@ Command Infotaxis::step(const Observation& obs, WindProbe& wind) {
   if (moving_) {
     const Vec2 target = centre(ti_, tj_);
     const double travelled = obs.odometer - last_odometer_;
-    const double dist = std::hypot(target.x - pos.x, target.y - pos.y);
+    const double dist = math::hypot(target.x - pos.x, target.y - pos.y);
     // arrived: the next step would overshoot the centre by more than it now falls short
     const bool arrived = dist <= 0.5 * travelled || dist < 1e-9;
     // blocked: told to drive on the heading it already had, it did not move (a wall, a
@@ -289,7 +290,7 @@ Command Infotaxis::step(const Observation& obs, WindProbe& wind) {
     if (!moving_) return c;  // declared or abandoned
   }
   const Vec2 target = centre(ti_, tj_);
-  commanded_ = std::atan2(target.y - pos.y, target.x - pos.x);
+  commanded_ = math::atan2(target.y - pos.y, target.x - pos.x);
   commanded_go_ = true;
   last_heading_ = obs.odometry.heading;
   last_odometer_ = obs.odometer;

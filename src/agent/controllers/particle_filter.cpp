@@ -5,6 +5,7 @@
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -48,7 +49,7 @@ double no_hit_probability(const Vec2& source, const Vec2& robot, std::span<const
   for (const Puff& p : puffs) {
     const double dx = rx - p.offset.x;
     const double dy = ry - p.offset.y;
-    const double detect = p.density0 * std::exp(-dx * dx * p.inv_2vx - dy * dy * p.inv_2vy);
+    const double detect = p.density0 * math::exp(-dx * dx * p.inv_2vx - dy * dy * p.inv_2vy);
     // why: check() keeps density0 <= 1; min() guards a probability all the same
     total *= 1.0 - std::min(1.0, detect);
   }
@@ -83,7 +84,7 @@ Agreement agreement(std::span<const Vec2> points, double radius) {
     a.mean.y += p.y / n;
   }
   a.agree = std::all_of(points.begin(), points.end(), [&](const Vec2& p) {
-    return std::hypot(p.x - a.mean.x, p.y - a.mean.y) <= radius;
+    return math::hypot(p.x - a.mean.x, p.y - a.mean.y) <= radius;
   });
   return a;
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 
 namespace plumetrace {
 
@@ -29,23 +30,23 @@ std::vector<Vec2> LegHistory::path(const Vec2& last) const {
 }
 
 double levy_step(double mu, double l_min, double l_max, double u) {
-  const double a = std::pow(l_min, 1.0 - mu);
-  const double b = std::pow(l_max, 1.0 - mu);
+  const double a = math::pow(l_min, 1.0 - mu);
+  const double b = math::pow(l_max, 1.0 - mu);
   // F(l) = (a - l^(1-mu)) / (a - b) on [l_min, l_max]; solve F(l) = u
-  const double l = std::pow(a - u * (a - b), 1.0 / (1.0 - mu));
+  const double l = math::pow(a - u * (a - b), 1.0 / (1.0 - mu));
   return std::fmin(std::fmax(l, l_min), l_max);
 }
 
 double levy_tail(double mu, double l_min, double l_max, double x) {
   if (x <= l_min) return 1.0;
   if (x >= l_max) return 0.0;
-  const double a = std::pow(l_min, 1.0 - mu);
-  const double b = std::pow(l_max, 1.0 - mu);
-  return (std::pow(x, 1.0 - mu) - b) / (a - b);
+  const double a = math::pow(l_min, 1.0 - mu);
+  const double b = math::pow(l_max, 1.0 - mu);
+  return (math::pow(x, 1.0 - mu) - b) / (a - b);
 }
 
 double crw_mean_squared_displacement(int n, double mean_step, double mean_step2, double c) {
-  const double pairs = c / (1.0 - c) * (n - (1.0 - std::pow(c, n)) / (1.0 - c));
+  const double pairs = c / (1.0 - c) * (n - (1.0 - math::pow(c, n)) / (1.0 - c));
   return n * mean_step2 + 2.0 * mean_step * mean_step * pairs;
 }
 
@@ -60,13 +61,13 @@ Command Crw::step(const Observation& obs, WindProbe& wind) {
       // biased CRW: the mean heading weighs upwind against persistence (Codling et al. 2008)
       const double up = upwind_heading(wind.measure_wind_body(), obs.odometry.heading);
       const double w = params_.upwind_bias;
-      mean = std::atan2(w * std::sin(up) + (1.0 - w) * std::sin(previous),
-                        w * std::cos(up) + (1.0 - w) * std::cos(previous));
+      mean = math::atan2(w * math::sin(up) + (1.0 - w) * math::sin(previous),
+                         w * math::cos(up) + (1.0 - w) * math::cos(previous));
     }
     const double heading = wrap_angle(mean + wrapped_cauchy(params_.rho, rng_));
     const double length = params_.step_law == StepLaw::kFixed
                               ? params_.step
-                              : -params_.step * std::log(rng_.uniform_open0());
+                              : -params_.step * math::log(rng_.uniform_open0());
     leg_.start(obs, heading, length);
     history_.add(leg_.start_point());
     ++legs_;

@@ -4,7 +4,7 @@
 #   bash scripts/setup.sh          what the main job needs: build the command, draw the report
 #   bash scripts/setup.sh --test   that, plus what the tests need (GoogleTest, Google Benchmark,
 #                                  the Python module and its tests, MPI, chromium and node, clang's
-#                                  libFuzzer)
+#                                  libFuzzer, the aarch64 cross compiler and qemu-user)
 set -euo pipefail
 
 mode=main
@@ -32,6 +32,8 @@ if [[ $mode == test ]]; then
     # the test build and that wheel's build share compiled objects (scripts/build.sh --test)
     ccache
     clang libfuzzer-14-dev
+    # the model built for 64-bit ARM and run under qemu-user (scripts/aarch64.sh)
+    g++-aarch64-linux-gnu qemu-user-static
     libopenmpi-dev openmpi-bin
     chromium
   )

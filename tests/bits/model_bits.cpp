@@ -5,13 +5,10 @@
 // (cmake/aarch64-linux-gnu.cmake, run under qemu-user) and requires the same lines
 // (tests/bits/compare.sh; docs/reliability.md, "Same bits on every machine"). It checks the
 // vectorised loops against the scalar formulas too, and exits 1 when they differ.
-//   model_bits          every line
-//   model_bits --quick  the same without the longer runs (for a slow emulator)
 #include <bit>
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -79,25 +76,34 @@ Scenario scenario_of(const std::vector<std::string>& overrides) {
   return build_scenario(settings);
 }
 
-// a run of every robot of the scenario at (kSeed, trial): each one's result and the hash of
-// every robot's pose and odometer at every step
-void print_run(const std::string& name, const std::vector<std::string>& overrides,
-               std::uint64_t trial = 0) {
-  const Scenario s = scenario_of(overrides);
-  Hash path;
-  const auto observe = [&path](const World& world) {
+// runs at (kSeed, trial) of scenarios that share one environment, stepped together in one World
+// (each run is then the one it is alone: World's contract, tested by the world and team tests):
+// every robot's result, and a hash of every robot's pose and odometer at every step
+void print_runs(const std::vector<std::pair<std::string, std::vector<std::string>>>& runs,
+                std::uint64_t trial = 0) {
+  std::vector<Scenario> scenarios;
+  for (const auto& run : runs) scenarios.push_back(scenario_of(run.second));
+  std::vector<const Scenario*> group;
+  for (const Scenario& s : scenarios) group.push_back(&s);
+  World world(group, kSeed, trial);
+  std::vector<Hash> paths(world.agent_count());
+  while (!world.done()) {
+    world.step();
     for (std::size_t i = 0; i < world.agent_count(); ++i) {
       const RobotState& r = world.agent(i).robot();
-      path.add(r.pose.x);
-      path.add(r.pose.y);
-      path.add(r.pose.heading);
-      path.add(r.odometer);
+      paths[i].add(r.pose.x);
+      paths[i].add(r.pose.y);
+      paths[i].add(r.pose.heading);
+      paths[i].add(r.odometer);
     }
-  };
-  const std::vector<RunResult> results = run_team(s, kSeed, trial, observe);
-  std::printf("run %s path=%s\n", name.c_str(), hex(path).c_str());
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    std::printf("run %s robot %zu%s\n", name.c_str(), i, result_bits(results[i]).c_str());
+  }
+  const std::vector<RunResult> results = world.results();
+  for (std::size_t t = 0; t < runs.size(); ++t) {
+    for (std::size_t i = world.teams()[t]; i < world.teams()[t + 1]; ++i) {
+      const std::size_t robot = i - world.teams()[t];
+      std::printf("run %s robot %zu path=%s%s\n", runs[t].first.c_str(), robot,
+                  hex(paths[i]).c_str(), result_bits(results[i]).c_str());
+    }
   }
 }
 
@@ -147,9 +153,9 @@ void print_rng() {
 
 int main(int argc, char** argv) {
   using namespace plumetrace;
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  if (argc > 1 && !quick) {
-    std::fprintf(stderr, "model_bits: unknown option '%s' (use --quick or nothing)\n", argv[1]);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a line at a time, for a slow emulator's watcher
+  if (argc > 1) {
+    std::fprintf(stderr, "model_bits: unknown option '%s' (it takes none)\n", argv[1]);
     return 2;
   }
   // the vectorised loops of this build (SSE2 to AVX-512 on x86-64, NEON on ARM) against the
@@ -173,27 +179,32 @@ int main(int argc, char** argv) {
               200);
   print_plume("farrell", {"plume.dispersion=farrell", "plume.kernel=gaussian"}, 200);
 
-  // every registered algorithm in the default scenario, nearer the source and briefly
+  // every registered algorithm in the default scenario, nearer the source and briefly, the
+  // first-order sensor and a team, on one plume
   const std::vector<std::string> near = {"robot.start_x=5.0", "supervisor.timeout=30.0"};
+  std::vector<std::pair<std::string, std::vector<std::string>>> runs;
   for (const Algorithm a : all_algorithms()) {
     std::vector<std::string> o = near;
     o.push_back("controller.algorithm=" + std::string(algorithm_name(a)));
-    print_run(std::string(algorithm_name(a)), o);
+    runs.emplace_back(std::string(algorithm_name(a)), o);
   }
-  if (!quick) {
-    print_run("meander-surge-spiral",
-              {"wind.model=meander", "robot.start_x=6.0", "supervisor.timeout=40.0",
-               "controller.algorithm=surge-spiral"});
-    print_run("switching-casting",
-              {"wind.model=switching", "switching.first=5", "switching.timing=random",
-               "switching.count=3", "switching.draw=normal", "robot.start_x=6.0",
-               "supervisor.timeout=40.0", "controller.algorithm=casting"},
-              1);
-    print_run("first-order-chemotaxis",
-              {"odor.model=first-order", "first_order.noise=20", "robot.start_x=5.0",
-               "supervisor.timeout=30.0", "controller.algorithm=chemotaxis"});
-    print_run("team-hayes", {"team.count=3", "robot.start_x=6.0", "supervisor.timeout=30.0",
-                             "controller.algorithm=hayes", "hayes.declare_hits=3"});
-  }
+  runs.push_back({"first-order-chemotaxis",
+                  {"odor.model=first-order", "first_order.noise=20", "robot.start_x=5.0",
+                   "supervisor.timeout=30.0", "controller.algorithm=chemotaxis"}});
+  runs.push_back({"team-hayes",
+                  {"team.count=3", "robot.start_x=6.0", "supervisor.timeout=30.0",
+                   "controller.algorithm=hayes", "hayes.declare_hits=3"}});
+  print_runs(runs);
+  print_runs({{"meander-surge-spiral",
+               {"wind.model=meander", "robot.start_x=6.0", "supervisor.timeout=40.0",
+                "controller.algorithm=surge-spiral"}},
+              {"meander-casting",
+               {"wind.model=meander", "robot.start_x=6.0", "supervisor.timeout=40.0",
+                "controller.algorithm=casting"}}});
+  print_runs({{"switching-casting",
+               {"wind.model=switching", "switching.first=5", "switching.timing=random",
+                "switching.count=3", "switching.draw=normal", "robot.start_x=6.0",
+                "supervisor.timeout=40.0", "controller.algorithm=casting"}}},
+             1);
   return 0;
 }

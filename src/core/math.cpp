@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "math_tables.hpp"
+
 // why: every function here is a fixed sequence of IEEE +, -, *, / and sqrt (correctly rounded,
 // so the same on every machine) and integer operations: range reduction by exactly
 // representable parts of ln 2 and pi / 2 (Cody and Waite), then a truncated Taylor series on
@@ -111,18 +113,6 @@ double scale2(double p, int k) {
   return p * power(k);
 }
 
-// x = k ln 2 + r with k the nearest integer to x / ln 2 and |r| <= ln 2 / 2 (to a few ulps)
-double reduce_ln2(double x, double& k) {
-  k = nearest(x * kInvLn2);
-  return (x - k * kLn2Hi) - k * kLn2Lo;
-}
-
-// e^r - 1 - r for |r| <= 0.75: the Taylor series to r^18 (its rest is below 2^-60 r^2)
-double expm1_rest(double r) {
-  static constexpr auto c = series<17>(2, 1, 1.0);  // 1 / 2!, ..., 1 / 18!
-  return r * r * horner(r, c);
-}
-
 // x = n pi / 2 + r + rl, |r| <= pi / 4, rl below r's last bit (for |x| < 2^30); returns n mod 4
 int reduce_pio2(double x, double& r, double& rl) {
   if (std::fabs(x) <= 0x1.921fb54442d18p-1) {  // pi / 4
@@ -203,40 +193,65 @@ void exact_product(double a, double b, double& hi, double& lo) {
   lo = ((ah * bh - hi) + ah * bl + al * bh) + al * bl;
 }
 
-// log x = hi + lo to about 2^-60 |hi| for finite x > 0: x = 2^e m, m in [sqrt(1/2), sqrt(2)),
-// f = m - 1 (exact), s = f / (2 + f) = sh + sl (sl what the division lost), log m = 2 atanh s
-// = 2 s + s R with R = 2 (s^2/3 + s^4/5 + ... + s^22/23)
+// a + b = s + err exactly (Knuth's TwoSum)
+void two_sum(double a, double b, double& s, double& err) {
+  s = a + b;
+  const double bb = s - a;
+  err = (a - (s - bb)) + (b - bb);
+}
+
+// 1 / (1 + (i + 1/2) / 128), the midpoints of the table of logarithms
+constexpr std::array<double, 128> kInvMid = [] {
+  std::array<double, 128> v{};
+  for (int i = 0; i < 128; ++i) v[i] = 1.0 / (1.0 + (2 * i + 1) / 256.0);
+  return v;
+}();
+
+// log x = hi + lo to about 2^-60 |hi| for finite x > 0.
+// Near 1 (15/16 < x < 17/16): f = x - 1 (exact), s = f / (2 + f) = sh + sl (sl what the division
+// lost), log x = 2 atanh s = 2 s + s R with R = 2 (s^2/3 + s^4/5 + ... + s^12/13).
+// Elsewhere: x = 2^e m, m in [1, 2), c the midpoint of m's 1/128 of [1, 2),
+// log x = e ln 2 + ln c + log1p(r), r = (m - c) / c (|r| <= 2^-8, m - c exact), log1p r by its
+// Taylor series to r^7, ln c from the table (scripts/math_tables.py)
 void log_parts(double x, double& hi, double& lo) {
+  if (x > 0.9375 && x < 1.0625) {
+    const double f = x - 1.0;
+    const double d = 2.0 + f, dl = f - (d - 2.0);  // 2 + f = d + dl exactly
+    const double sh = f / d;
+    // sl = (f - sh (d + dl)) / d, with sh d = p + pl exactly and f - p exact (p is near f)
+    double p, pl;
+    exact_product(sh, d, p, pl);
+    const double sl = (((f - p) - pl) - sh * dl) / d;
+    static constexpr auto c = [] {  // 2/3, 2/5, ..., 2/13
+      std::array<double, 6> v{};
+      for (int n = 1; n <= 6; ++n) v[n - 1] = 2.0 / (2 * n + 1);
+      return v;
+    }();
+    const double z = sh * sh;
+    hi = 2.0 * sh;
+    lo = 2.0 * sl + sh * (z * horner(z, c));
+    return;
+  }
   int e = 0;
   if (x < 0x1p-1022) {  // subnormal: scaled to normal, exactly
     x *= 0x1p54;
     e = -54;
   }
-  constexpr std::uint64_t kSqrtHalf = 0x3fe6a09e667f3bcdULL;  // the bits of sqrt(1/2)
-  const std::uint64_t bits = std::bit_cast<std::uint64_t>(x) - kSqrtHalf;
-  e += static_cast<int>(static_cast<std::int64_t>(bits) >> 52);
-  const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) + kSqrtHalf);
-  const double f = m - 1.0;
-  const double d = 2.0 + f, dl = f - (d - 2.0);  // 2 + f = d + dl exactly
-  const double sh = f / d;
-  // sl = (f - sh (d + dl)) / d, with sh d = p + pl exactly and f - p exact (p is near f)
-  double p, pl;
-  exact_product(sh, d, p, pl);
-  const double sl = (((f - p) - pl) - sh * dl) / d;
-  const double z = sh * sh;
-  static constexpr auto c = [] {  // 2/3, 2/5, ..., 2/23
-    std::array<double, 11> v{};
-    for (int n = 1; n <= 11; ++n) v[n - 1] = 2.0 / (2 * n + 1);
-    return v;
-  }();
-  const double r = z * horner(z, c);
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
+  e += static_cast<int>(bits >> 52) - 1023;
+  const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
+  const int i = static_cast<int>((bits >> 45) & 127);
+  const double c = 1.0 + (2 * i + 1) / 256.0;
+  const double r = (m - c) * kInvMid[i];
+  static constexpr std::array<double, 6> kLog1p = {-1.0 / 2, 1.0 / 3,  -1.0 / 4,
+                                                   1.0 / 5,  -1.0 / 6, 1.0 / 7};
+  const double rest = r * r * horner(r, kLog1p);  // log1p r - r
   const double de = static_cast<double>(e);
-  // hi + lo = (de ln2_hi + 2 sh) + (2 sl + sh R + de ln2_lo); the first two are exact, and
-  // their sum is split exactly (Fast2Sum, larger first)
-  const double a = de * kLn2Hi, b = 2.0 * sh;
-  hi = a + b;
-  const double lost = std::fabs(a) >= std::fabs(b) ? (a - hi) + b : (b - hi) + a;
-  lo = lost + ((2.0 * sl + sh * r) + de * kLn2Lo);
+  // (e ln2_hi + ln c_hi) + r, each sum split exactly, and the small terms
+  double s1, e1, e2;
+  two_sum(de * kLn2Hi, tables::kLogMid[i][0], s1, e1);
+  two_sum(s1, r, hi, e2);
+  lo = (e1 + e2) + (rest + (de * kLn2Lo + tables::kLogMid[i][1]));
 }
 
 // x is an integer (finite)
@@ -251,13 +266,19 @@ double exp(double x) {
   if (x > kExpMax) return kInf;
   if (x < kExpMin) return 0.0;
   if (std::fabs(x) < 0x1p-54) return 1.0 + x;
-  // x = k ln 2 + r + rl: x - k ln2_hi is exact, r + rl its difference with k ln2_lo exactly
-  const double k = nearest(x * kInvLn2);
-  const double t = x - k * kLn2Hi, w = k * kLn2Lo;
+  // x = n ln2 / 64 + r + rl with n = 64 k + j, 0 <= j < 64, |r| <= ln2 / 128: x - n ln2_hi / 64
+  // is exact (|n| < 2^17), r + rl its difference with n ln2_lo / 64, exactly
+  const double n = nearest(x * (64.0 * kInvLn2));
+  const double t = x - n * (kLn2Hi / 64), w = n * (kLn2Lo / 64);
   const double r = t - w, rl = (t - r) - w;
-  // e^(r + rl) = 1 + r + (e^r - 1 - r) + rl e^r, with 1 + r = s + sl exactly
-  const double s = 1.0 + r, sl = (1.0 - s) + r;
-  return scale2(s + (sl + (expm1_rest(r) + (rl + r * rl))), static_cast<int>(k));
+  const int ni = static_cast<int>(n);
+  const int j = ni & 63, k = ni >> 6;
+  // e^(r + rl) - 1 = r + r^2 (1/2! + r/3! + ... + r^4/6!) + rl (1 + r): the rest is below 2^-60 r
+  static constexpr auto c = series<5>(2, 1, 1.0);
+  const double p = r + (r * r * horner(r, c) + (rl + rl * r));
+  // e^x = 2^k 2^(j/64) (1 + p), 2^(j/64) = hi + lo from the table (lo p is below 2^-60)
+  const double hi = tables::kExp2[j][0], lo = tables::kExp2[j][1];
+  return scale2(hi + (lo + hi * p), k);
 }
 
 double expm1(double x) {
@@ -265,16 +286,25 @@ double expm1(double x) {
   if (x > kExpMax) return kInf;
   if (x < -40.0) return -1.0;  // e^x < 2^-57: -1 to the bit
   if (std::fabs(x) < 0x1p-54) return x;
-  // why: below 0.75 the series alone; reduced by k ln 2 there, e^x - 1 would be a difference of
-  // two numbers of nearly equal size, and lose bits
-  double k = 0.0;
-  const double r = std::fabs(x) < 0.75 ? x : reduce_ln2(x, k);
-  const double em1 = r + expm1_rest(r);  // e^r - 1
-  if (k == 0.0) return em1;
-  const int ki = static_cast<int>(k);
-  if (ki > 56) return scale2(1.0 + em1, ki) - 1.0;  // the 1 is below the last bit
-  // e^x - 1 = 2^k (e^r - 1) + (2^k - 1), both terms exact
-  return scale2(em1, ki) + (scale2(1.0, ki) - 1.0);
+  if (std::fabs(x) < 0x1p-5) {
+    // the Taylor series to x^10 (its rest is below 2^-60 x)
+    static constexpr auto c = series<9>(2, 1, 1.0);  // 1/2!, ..., 1/10!
+    return x + x * x * horner(x, c);
+  }
+  // e^x = 2^k (hi + tail) as in exp
+  const double n = nearest(x * (64.0 * kInvLn2));
+  const double t = x - n * (kLn2Hi / 64), w = n * (kLn2Lo / 64);
+  const double r = t - w, rl = (t - r) - w;
+  const int ni = static_cast<int>(n);
+  const int j = ni & 63, k = ni >> 6;
+  static constexpr auto c = series<5>(2, 1, 1.0);
+  const double p = r + (r * r * horner(r, c) + (rl + rl * r));
+  const double hi = tables::kExp2[j][0], tail = tables::kExp2[j][1] + hi * p;
+  if (k > 56) return scale2(hi + tail, k) - 1.0;  // the 1 is below the last bit
+  // 2^k hi - 1 + 2^k tail: both products exact (k >= -58), the difference split exactly
+  double s, err;
+  two_sum(scale2(hi, k), -1.0, s, err);
+  return s + (err + scale2(tail, k));
 }
 
 double log(double x) {

@@ -63,14 +63,14 @@ std::function<double(Rng&)> log_uniform(int lo, int hi, bool sign = false) {
 
 constexpr int kN = 100000;
 
-TEST(Math, ExpAndExpm1AreWithinAnUlpOrSo) {
+TEST(Math, ExpAndExpm1AreWithinAnUlp) {
   expect_within("exp", 1.0, kN, uniform(-745.0, 709.7), math::exp,
                 [](long double x) { return std::exp(x); });
-  expect_within("exp near 0", 0.65, kN, uniform(-1.0, 1.0), math::exp,
+  expect_within("exp near 0", 0.55, kN, uniform(-1.0, 1.0), math::exp,
                 [](long double x) { return std::exp(x); });
-  expect_within("expm1", 1.2, kN, uniform(-40.0, 40.0), math::expm1,
+  expect_within("expm1", 0.75, kN, uniform(-40.0, 40.0), math::expm1,
                 [](long double x) { return std::expm1(x); });
-  expect_within("expm1 near 0", 1.2, kN, log_uniform(-60, 0, true), math::expm1,
+  expect_within("expm1 near 0", 0.75, kN, log_uniform(-60, 0, true), math::expm1,
                 [](long double x) { return std::expm1(x); });
 }
 
@@ -124,20 +124,20 @@ TEST(Math, HypotSinhAndPowAreWithinAnUlpOrSoForModestExponents) {
       "hypot of large numbers", 0.9, kN, log_uniform(900, 1000, true),
       [](double x) { return math::hypot(x, 1e300); },
       [](long double x) { return std::hypot(x, 1e300L); });
-  expect_within("sinh", 1.4, kN, uniform(-700.0, 700.0), math::sinh,
+  expect_within("sinh", 1.2, kN, uniform(-700.0, 700.0), math::sinh,
                 [](long double x) { return std::sinh(x); });
-  expect_within("sinh near 0", 1.4, kN, log_uniform(-40, 1, true), math::sinh,
+  expect_within("sinh near 0", 1.2, kN, log_uniform(-40, 1, true), math::sinh,
                 [](long double x) { return std::sinh(x); });
   // the powers the random walks and the spiral take: lengths to exponents in [-2, 0), their
   // inverses, 1.5, and small numbers to whole exponents
   for (const double y : {-2.0, -1.3, -0.5, -1.0 / 1.3, 1.5, 3.0, 17.0}) {
     expect_within(
-        "pow", 1.2, kN, uniform(0.01, 20.0), [y](double x) { return math::pow(x, y); },
+        "pow", 1.05, kN, uniform(0.01, 20.0), [y](double x) { return math::pow(x, y); },
         [y](long double x) { return std::pow(x, static_cast<long double>(y)); });
   }
   // why: log x is carried to about 2^-60 of itself, so the error grows with |y log x|
   expect_within(
-      "pow of large exponents", 16.0, kN, uniform(0.5, 2.0),
+      "pow of large exponents", 3.5, kN, uniform(0.5, 2.0),
       [](double x) { return math::pow(x, 700.0); },
       [](long double x) { return std::pow(x, 700.0L); });
 }

@@ -73,6 +73,14 @@ double horner(double z, const std::array<double, N>& c) {
   return p;
 }
 
+// the same polynomial of 8 coefficients in halves (Estrin's scheme): a shorter chain of
+// dependent operations, other roundings than Horner's but the same on every machine
+double estrin(double z, const std::array<double, 8>& c) {
+  const double z2 = z * z, z4 = z2 * z2;
+  return ((c[0] + z * c[1]) + z2 * (c[2] + z * c[3])) +
+         z4 * ((c[4] + z * c[5]) + z2 * (c[6] + z * c[7]));
+}
+
 // 1 / n! for n = 0..22
 constexpr std::array<double, 23> kInvFactorial = [] {
   std::array<double, 23> v{};
@@ -134,8 +142,7 @@ int reduce_pio2(double x, double& r, double& rl) {
   const double r2 = r + rl;  // renormalised
   rl -= r2 - r;
   r = r2;
-  const double quarter = std::fmod(n, 4.0);  // exact
-  return static_cast<int>(quarter < 0.0 ? quarter + 4.0 : quarter);
+  return static_cast<int>(static_cast<std::int64_t>(n) & 3);  // |n| < 2^31 here
 }
 
 // sin(r + rl) and cos(r + rl) for |r| <= pi / 4, rl below r's last bit: Taylor series to r^17
@@ -143,13 +150,13 @@ int reduce_pio2(double x, double& r, double& rl) {
 double sin_kernel(double r, double rl) {
   static constexpr auto c = series<8>(3, 2, -1.0);  // 1 / 3!, -1 / 5!, ..., -1 / 17!
   const double z = r * r;
-  return r + (r * z * -horner(z, c) + rl * (1.0 - 0.5 * z));
+  return r + (r * z * -estrin(z, c) + rl * (1.0 - 0.5 * z));
 }
 
 double cos_kernel(double r, double rl) {
   static constexpr auto c = series<8>(4, 2, -1.0);  // 1 / 4!, -1 / 6!, ..., -1 / 18!
   const double z = r * r;
-  const double p = horner(z, c);
+  const double p = estrin(z, c);
   // why: 1 - z / 2 as w plus what rounding w lost, exactly (w is within a factor 2 of 1)
   const double hz = 0.5 * z;
   const double w = 1.0 - hz;
@@ -254,6 +261,23 @@ void log_parts(double x, double& hi, double& lo) {
   lo = (e1 + e2) + (rest + (de * kLn2Lo + tables::kLogMid[i][1]));
 }
 
+// e^x = 2^k (hi + tail) for |x| < 746, returning k: x = n ln2 / 128 + r + rl with
+// n = 128 k + j, 0 <= j < 128 and |r| <= ln2 / 256 (x - n ln2_hi / 128 is exact, |n| < 2^18; r + rl
+// is its difference with n ln2_lo / 128, exactly); hi = 2^(j/128) from the table and
+// tail = its rest + hi (e^(r + rl) - 1), that by its Taylor series to r^5 (rest below 2^-61 r)
+int exp_reduce(double x, double& hi, double& tail) {
+  const double n = nearest(x * (128.0 * kInvLn2));
+  const double t = x - n * (kLn2Hi / 128), w = n * (kLn2Lo / 128);
+  const double r = t - w, rl = (t - r) - w;
+  const int ni = static_cast<int>(n);
+  // why: the polynomial in two halves (Estrin's scheme), a shorter chain of dependent operations
+  const double r2 = r * r;
+  const double p = r + (r2 * ((0.5 + r * (1.0 / 6)) + r2 * (1.0 / 24 + r * (1.0 / 120))) + rl);
+  hi = tables::kExp2[ni & 127][0];
+  tail = tables::kExp2[ni & 127][1] + hi * p;
+  return ni >> 7;
+}
+
 // x is an integer (finite)
 bool is_integer(double x) { return std::floor(x) == x; }
 // x is an odd integer (finite)
@@ -266,19 +290,9 @@ double exp(double x) {
   if (x > kExpMax) return kInf;
   if (x < kExpMin) return 0.0;
   if (std::fabs(x) < 0x1p-54) return 1.0 + x;
-  // x = n ln2 / 64 + r + rl with n = 64 k + j, 0 <= j < 64, |r| <= ln2 / 128: x - n ln2_hi / 64
-  // is exact (|n| < 2^17), r + rl its difference with n ln2_lo / 64, exactly
-  const double n = nearest(x * (64.0 * kInvLn2));
-  const double t = x - n * (kLn2Hi / 64), w = n * (kLn2Lo / 64);
-  const double r = t - w, rl = (t - r) - w;
-  const int ni = static_cast<int>(n);
-  const int j = ni & 63, k = ni >> 6;
-  // e^(r + rl) - 1 = r + r^2 (1/2! + r/3! + ... + r^4/6!) + rl (1 + r): the rest is below 2^-60 r
-  static constexpr auto c = series<5>(2, 1, 1.0);
-  const double p = r + (r * r * horner(r, c) + (rl + rl * r));
-  // e^x = 2^k 2^(j/64) (1 + p), 2^(j/64) = hi + lo from the table (lo p is below 2^-60)
-  const double hi = tables::kExp2[j][0], lo = tables::kExp2[j][1];
-  return scale2(hi + (lo + hi * p), k);
+  double hi, tail;
+  const int k = exp_reduce(x, hi, tail);
+  return scale2(hi + tail, k);
 }
 
 double expm1(double x) {
@@ -291,15 +305,8 @@ double expm1(double x) {
     static constexpr auto c = series<9>(2, 1, 1.0);  // 1/2!, ..., 1/10!
     return x + x * x * horner(x, c);
   }
-  // e^x = 2^k (hi + tail) as in exp
-  const double n = nearest(x * (64.0 * kInvLn2));
-  const double t = x - n * (kLn2Hi / 64), w = n * (kLn2Lo / 64);
-  const double r = t - w, rl = (t - r) - w;
-  const int ni = static_cast<int>(n);
-  const int j = ni & 63, k = ni >> 6;
-  static constexpr auto c = series<5>(2, 1, 1.0);
-  const double p = r + (r * r * horner(r, c) + (rl + rl * r));
-  const double hi = tables::kExp2[j][0], tail = tables::kExp2[j][1] + hi * p;
+  double hi, tail;
+  const int k = exp_reduce(x, hi, tail);
   if (k > 56) return scale2(hi + tail, k) - 1.0;  // the 1 is below the last bit
   // 2^k hi - 1 + 2^k tail: both products exact (k >= -58), the difference split exactly
   double s, err;

@@ -1217,8 +1217,7 @@ pt::TaskRunner process_runner(int processes) {
       return std::chrono::duration<double>(Clock::now() - start).count();
     };
     const std::vector<pt::TaskGroup> groups =
-        pt::split_groups(pt::plume_groups(sweeps, tasks, options.share_plumes),
-                         2 * static_cast<std::size_t>(processes));
+        pt::work_groups(sweeps, tasks, options.share_plumes, static_cast<std::size_t>(processes));
     const std::size_t workers = std::min(static_cast<std::size_t>(processes), groups.size());
     if (workers <= 1) {
       pt::CampaignOptions one = options;

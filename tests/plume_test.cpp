@@ -9,10 +9,12 @@
 #include "env/plume_loops.hpp"
 #include "env/vector_math.hpp"
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/env/environment.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/world.hpp"
 #include "support/stepped_wind.hpp"
 
 namespace plumetrace {
@@ -486,8 +488,8 @@ TEST(Plume, FarrellDispersionSpreadsCentresAs2DtAndSquaredWidthsAsRateT) {
     std::vector<double> x(n, 0.0), y(n, 0.0), z(n, 0.0), w(n, 0.1), h(n, 10.0);
     Rng rng(2002);
     for (int k = 0; k < steps; ++k) {
-      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, {},
-                             rng.next_u64(), walk_stddev(p, dt), width_growth(p, dt), true);
+      loops::drift_walk_grow(simd::active(), x.data(), y.data(), z.data(), w.data(), h.data(), n,
+                             {}, rng.next_u64(), walk_stddev(p, dt), width_growth(p, dt), true);
     }
     const double expected = 2.0 * p.relative_diffusivity * t;
     for (const auto* axis : {&x, &y, &z}) {
@@ -569,47 +571,119 @@ namespace {
   if (n % 2 == 1) z[n - 1] += d.z + stddev * normals(n).first;
 }
 
+// the scalar formula of what a block can add at most (FilamentPlume::sum_kernels)
+double block_bound(const PlumeParams& params, double scale, double e2, double m, double h_lo,
+                   double h_hi) {
+  const double e = params.kernel == Kernel::kGaussian ? e2 : std::sqrt(e2);
+  const double h = e > 0.0 ? std::clamp(std::sqrt(1.5 / e), h_lo, h_hi) : h_hi;
+  return m * (scale * h * h * h * vmath::exp_neg(-e * h * h));
+}
+
+// Every path this machine runs (simd::available(): scalar, the baseline, AVX2, AVX-512) against
+// the scalar formulas, at lengths that leave every remainder of every vector width.
 TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
-  Rng rng(8);
-  for (const std::int64_t n : {1, 2, 7, 64, 1001, 1600}) {
-    std::vector<double> x(n), y(n), z(n), w(n), h(n);
-    for (std::int64_t i = 0; i < n; ++i) {
-      x[i] = 16.0 * rng.uniform();
-      y[i] = rng.uniform() - 0.5;
-      z[i] = 0.1 * rng.uniform();
-      w[i] = 0.1 + 0.05 * rng.uniform();
-      h[i] = 1.0 / w[i];
-    }
-    // one step of each width growth (the paper's, then Farrell's): the loop the plume runs,
-    // against the scalar formulas
-    for (const bool area : {false, true}) {
-      auto sx = x, sy = y, sz = z, sw = w;
-      const Vec3 d{0.032, -0.001, 0.0005};
-      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, d, 0xabcdef + n,
-                             0.0032, 4e-7, area);
-      scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7, area);
+  std::string tested;
+  for (const simd::Path path : simd::available()) {
+    tested += ' ';
+    tested += simd::name(path);
+    const auto on = [path](std::int64_t n) {
+      return "path " + std::string(simd::name(path)) + " n " + std::to_string(n);
+    };
+    Rng rng(8);
+    for (const std::int64_t n : {1, 2, 7, 13, 64, 1001, 1600}) {
+      std::vector<double> x(n), y(n), z(n), w(n), h(n);
       for (std::int64_t i = 0; i < n; ++i) {
-        ASSERT_EQ(x[i], sx[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(y[i], sy[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(z[i], sz[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(w[i], sw[i]) << "n " << n << " filament " << i << " area " << area;
-        ASSERT_EQ(h[i], 1.0 / sw[i]) << "n " << n << " filament " << i << " area " << area;
+        x[i] = 16.0 * rng.uniform();
+        y[i] = rng.uniform() - 0.5;
+        z[i] = 0.1 * rng.uniform();
+        w[i] = 0.1 + 0.05 * rng.uniform();
+        h[i] = 1.0 / w[i];
       }
-    }
-    // kernels at a point: the loop against kernel_value, per filament, for both kernels
-    for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {
-      const PlumeParams params = plume_preset(preset);
-      const Vec3 u{8.0, 0.1, 0.0};
-      std::vector<double> out(n);
-      const double scale = kernel_value(params, 1.0, 0.0);  // amount factor: w = 1 at d = 0
-      loops::kernels(u, x.data(), y.data(), z.data(), h.data(), n, scale, params.kernel,
-                     params.cutoff * params.cutoff, out.data());
-      for (std::int64_t i = 0; i < n; ++i) {
-        const double d2 = distance_squared(u, {x[i], y[i], z[i]});
-        ASSERT_EQ(out[i], kernel_value(params, w[i], d2)) << "n " << n << " filament " << i;
+      // one step of each width growth (the paper's, then Farrell's): the loop the plume runs,
+      // against the scalar formulas
+      for (const bool area : {false, true}) {
+        auto sx = x, sy = y, sz = z, sw = w;
+        const Vec3 d{0.032, -0.001, 0.0005};
+        loops::drift_walk_grow(path, x.data(), y.data(), z.data(), w.data(), h.data(), n, d,
+                               0xabcdef + n, 0.0032, 4e-7, area);
+        scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7, area);
+        for (std::int64_t i = 0; i < n; ++i) {
+          ASSERT_EQ(x[i], sx[i]) << on(n) << " filament " << i << " area " << area;
+          ASSERT_EQ(y[i], sy[i]) << on(n) << " filament " << i << " area " << area;
+          ASSERT_EQ(z[i], sz[i]) << on(n) << " filament " << i << " area " << area;
+          ASSERT_EQ(w[i], sw[i]) << on(n) << " filament " << i << " area " << area;
+          ASSERT_EQ(h[i], 1.0 / sw[i]) << on(n) << " filament " << i << " area " << area;
+        }
+      }
+      // kernels at a point: the loop against kernel_value, per filament, for both kernels; and
+      // what blocks at various distances can add at most, against its formula
+      for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {
+        const PlumeParams params = plume_preset(preset);
+        const Vec3 u{8.0, 0.1, 0.0};
+        std::vector<double> out(n);
+        const double scale = kernel_value(params, 1.0, 0.0);  // amount factor: w = 1 at d = 0
+        loops::kernels(path, u, x.data(), y.data(), z.data(), h.data(), n, scale, params.kernel,
+                       params.cutoff * params.cutoff, out.data());
+        for (std::int64_t i = 0; i < n; ++i) {
+          const double d2 = distance_squared(u, {x[i], y[i], z[i]});
+          ASSERT_EQ(out[i], kernel_value(params, w[i], d2)) << on(n) << " filament " << i;
+        }
+        std::vector<double> e2(n), lo(n), hi(n), m(n), most(n);
+        for (std::int64_t c = 0; c < n; ++c) {
+          e2[c] = c % 5 == 0 ? 0.0 : x[c] * x[c] * 0.01;
+          lo[c] = std::min(h[c], 1.0 / (w[c] + 0.02));
+          hi[c] = h[c];
+          m[c] = static_cast<double>(1 + c % 64);
+        }
+        loops::block_most(path, e2.data(), lo.data(), hi.data(), m.data(), n, scale, params.kernel,
+                          most.data());
+        for (std::int64_t c = 0; c < n; ++c) {
+          ASSERT_EQ(most[c], block_bound(params, scale, e2[c], m[c], lo[c], hi[c]))
+              << on(n) << " block " << c;
+        }
       }
     }
   }
+  std::printf("[ measured ] plume loop paths compared on this machine:%s\n", tested.c_str());
+}
+
+// A plume stepped and queried under each available path (simd::select, as PLUMETRACE_SIMD
+// does) is the same plume, to the bit, as under the scalar path: positions, widths and the
+// answers to concentration and threshold queries, in the laminar and the meandering wind.
+TEST(Plume, EverySimdPathStepsAndQueriesTheSamePlume) {
+  const simd::Path before = simd::active();
+  for (const bool meander : {false, true}) {
+    Scenario s;
+    if (meander) s.wind.model = WindModel::kMeander;
+    const auto run = [&](simd::Path path) {
+      simd::select(path);
+      Environment env = make_environment(s, 5, 0);
+      std::vector<double> answers;
+      for (int k = 0; k < 400; ++k) {
+        step(env, s.sim.dt);
+        if (k % 40 != 39) continue;
+        for (const Vec3 u : {Vec3{2.0, 0.1, 0.0}, Vec3{8.0, -0.3, 0.0}, Vec3{1.0, 0.0, 0.0}}) {
+          answers.push_back(env.odor->concentration(u));
+          answers.push_back(env.odor->reaches(u, s.odor.threshold) ? 1.0 : 0.0);
+        }
+      }
+      const OdorSnapshot snap = env.odor->snapshot();
+      for (const auto* v :
+           {&snap.filaments.x, &snap.filaments.y, &snap.filaments.z, &snap.filaments.w}) {
+        answers.insert(answers.end(), v->begin(), v->end());
+      }
+      return answers;
+    };
+    const std::vector<double> scalar = run(simd::Path::kScalar);
+    for (const simd::Path path : simd::available()) {
+      const std::vector<double> got = run(path);
+      ASSERT_EQ(got.size(), scalar.size()) << simd::name(path);
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i], scalar[i]) << simd::name(path) << " meander " << meander << " " << i;
+      }
+    }
+  }
+  simd::select(before);
 }
 
 using testing::SteppedWind;

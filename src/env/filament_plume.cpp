@@ -5,21 +5,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "../core/simd_targets.hpp"
 #include "plume_loops.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "vector_math.hpp"
-
-// why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
-// operations that round identically at every width, so every version gives the same bits
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-    !defined(PLUMETRACE_NO_VECTOR_CLONES) && defined(PLUMETRACE_NO_AVX512)
-#define PLUMETRACE_VECTOR_CLONES __attribute__((target_clones("default", "arch=x86-64-v3")))
-#elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-    !defined(PLUMETRACE_NO_VECTOR_CLONES)
-#define PLUMETRACE_VECTOR_CLONES \
-  __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define PLUMETRACE_VECTOR_CLONES
-#endif
 
 namespace plumetrace {
 
@@ -81,14 +70,14 @@ template <Kernel kKernel>
 }
 
 // why: the vector lambdas below are inlined and never cross a call boundary, so GCC's note that
-// passing 64-byte vectors changes the ABI between clones does not apply
+// passing 64-byte vectors changes the ABI between targets does not apply
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 // the x and y range of each block of `block` filaments, as (x min, x max, y min, y max);
 // min and max are exact, so any grouping gives the same
-PLUMETRACE_VECTOR_CLONES
-void block_boxes(const double* x, const double* y, std::size_t n, std::size_t block,
-                 double* boxes) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void block_boxes_body(const double* x, const double* y, std::size_t n,
+                                                    std::size_t block, double* boxes) {
   // why: GCC's vector types, lowered to the widest registers of each clone
   using V = double __attribute__((vector_size(64)));
   constexpr std::size_t kWidth = sizeof(V) / sizeof(double);
@@ -117,7 +106,9 @@ void block_boxes(const double* x, const double* y, std::size_t n, std::size_t bl
     std::size_t k = start;
     box[0] = box[1] = x[start];
     box[2] = box[3] = y[start];
-    if (end - start >= kWidth) {
+    // why: GCC lowers vector types to the baseline's vectors even where the vectoriser is off,
+    // so the scalar path keeps to the loop below
+    if (kPath != simd::Path::kScalar && end - start >= kWidth) {
       V xlo, ylo;
       load(xlo, x + k);
       load(ylo, y + k);
@@ -145,13 +136,18 @@ void block_boxes(const double* x, const double* y, std::size_t n, std::size_t bl
   }
 }
 
+PLUMETRACE_SIMD_VERSIONS(block_boxes,
+                         (const double* x, const double* y, std::size_t n, std::size_t block,
+                          double* boxes),
+                         (x, y, n, block, boxes))
+
 }  // namespace
 
 namespace loops {
 
 namespace {
 
-// the drift, walk and growth of x, y and w; inlined into each clone of drift_walk_grow
+// the drift, walk and growth of x, y and w; inlined into each version of drift_walk_grow
 template <bool kArea>
 [[gnu::always_inline]] inline void walk_grow(double* __restrict x, double* __restrict y,
                                              double* __restrict w, double* __restrict h,
@@ -172,12 +168,12 @@ template <bool kArea>
   }
 }
 
-}  // namespace
-
-PLUMETRACE_VECTOR_CLONES
-void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
-                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
-                     std::uint64_t key, double stddev, double gamma, bool area) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void drift_walk_grow_body(double* __restrict x, double* __restrict y,
+                                                        double* __restrict z, double* __restrict w,
+                                                        double* __restrict h, std::int64_t n,
+                                                        const Vec3& d, std::uint64_t key,
+                                                        double stddev, double gamma, bool area) {
   const double dz = d.z;
   if (area) {
     walk_grow<true>(x, y, w, h, n, d.x, d.y, key, stddev, gamma);
@@ -199,10 +195,13 @@ void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restr
   }
 }
 
-PLUMETRACE_VECTOR_CLONES
-void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
-             const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
-             Kernel kernel, double cut2, double* __restrict out) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void kernels_body(const Vec3& u, const double* __restrict x,
+                                                const double* __restrict y,
+                                                const double* __restrict z,
+                                                const double* __restrict h, std::int64_t m,
+                                                double scale, Kernel kernel, double cut2,
+                                                double* __restrict out) {
   if (kernel == Kernel::kGaussian) {
     kernel_loop<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
   } else {
@@ -210,16 +209,39 @@ void kernels(const Vec3& u, const double* __restrict x, const double* __restrict
   }
 }
 
-PLUMETRACE_VECTOR_CLONES
-void block_most(const double* __restrict e2, const double* __restrict h_lo,
-                const double* __restrict h_hi, const double* __restrict m, std::int64_t count,
-                double scale, Kernel kernel, double* __restrict most) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void block_most_body(const double* __restrict e2,
+                                                   const double* __restrict h_lo,
+                                                   const double* __restrict h_hi,
+                                                   const double* __restrict m, std::int64_t count,
+                                                   double scale, Kernel kernel,
+                                                   double* __restrict most) {
   if (kernel == Kernel::kGaussian) {
     most_loop<Kernel::kGaussian>(e2, h_lo, h_hi, m, count, scale, most);
   } else {
     most_loop<Kernel::kPrinted>(e2, h_lo, h_hi, m, count, scale, most);
   }
 }
+
+}  // namespace
+
+PLUMETRACE_SIMD_VERSIONS(drift_walk_grow,
+                         (double* __restrict x, double* __restrict y, double* __restrict z,
+                          double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
+                          std::uint64_t key, double stddev, double gamma, bool area),
+                         (x, y, z, w, h, n, d, key, stddev, gamma, area))
+
+PLUMETRACE_SIMD_VERSIONS(kernels,
+                         (const Vec3& u, const double* __restrict x, const double* __restrict y,
+                          const double* __restrict z, const double* __restrict h, std::int64_t m,
+                          double scale, Kernel kernel, double cut2, double* __restrict out),
+                         (u, x, y, z, h, m, scale, kernel, cut2, out))
+
+PLUMETRACE_SIMD_VERSIONS(block_most,
+                         (const double* __restrict e2, const double* __restrict h_lo,
+                          const double* __restrict h_hi, const double* __restrict m,
+                          std::int64_t count, double scale, Kernel kernel, double* __restrict most),
+                         (e2, h_lo, h_hi, m, count, scale, kernel, most))
 
 }  // namespace loops
 
@@ -304,7 +326,7 @@ void FilamentPlume::update_bounds() {
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   bounds_.resize(4 * blocks);  // allocates only past the capacity
-  block_boxes(x_.data(), y_.data(), n, kBlock, bounds_.data());
+  block_boxes(simd::active(), x_.data(), y_.data(), n, kBlock, bounds_.data());
   h_range_.resize(2 * blocks);
   for (std::size_t b = 0; b < blocks; ++b) {
     const auto first = h_.begin() + static_cast<std::ptrdiff_t>(b * kBlock);
@@ -329,7 +351,7 @@ void FilamentPlume::move(const WindField& wind, double dt) {
   // random walk (second term) and width growth (eq. 3); the walk's normals come from a
   // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
   const std::uint64_t key = rng_.next_u64();
-  loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
+  loops::drift_walk_grow(simd::active(), x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
                          static_cast<std::int64_t>(n), drift, key, walk_stddev(params_, dt),
                          width_growth(params_, dt), params_.dispersion == Dispersion::kFarrell);
   if (params_.lifetime == Lifetime::kLeaveArena) {
@@ -456,11 +478,12 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   const double margin = 1.0 + 1e-9 + 4.0 * static_cast<double>(n) * 0x1p-52;
+  const simd::Path path = simd::active();
   const auto block_terms = [&](std::size_t b) {
     const std::size_t start = b * kBlock;
     const std::size_t m = std::min(kBlock, n - start);
-    loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
-                   static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    loops::kernels(path, u, x_.data() + start, y_.data() + start, z_.data() + start,
+                   h_.data() + start, static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
     return m;
   };
   // the blocks within the cut-off, in index order, and for a threshold test what each can add
@@ -492,7 +515,7 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   }
   if (test) {
     // what each can add at most, in a vector loop
-    loops::block_most(e2.data(), h_lo.data(), h_hi.data(), count.data(),
+    loops::block_most(path, e2.data(), h_lo.data(), h_hi.data(), count.data(),
                       static_cast<std::int64_t>(near.size()), scale, params_.kernel, most.data());
     for (std::size_t c = 0; c < near.size(); ++c) bound += most[c];
     if (bound * margin < stop_at) return bound;

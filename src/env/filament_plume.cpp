@@ -73,73 +73,94 @@ template <Kernel kKernel>
 // passing 64-byte vectors changes the ABI between targets does not apply
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-// the x and y range of each block of `block` filaments, as (x min, x max, y min, y max);
-// min and max are exact, so any grouping gives the same
+// GCC's vector type of kBytes bytes of doubles
+template <std::size_t kBytes>
+struct DoubleVector;
+template <>
+struct DoubleVector<16> {
+  using type = double __attribute__((vector_size(16)));
+};
+template <>
+struct DoubleVector<32> {
+  using type = double __attribute__((vector_size(32)));
+};
+template <>
+struct DoubleVector<64> {
+  using type = double __attribute__((vector_size(64)));
+};
+
+// The bounds of each block of `block` filaments: the x and y range as (x min, x max, y min,
+// y max) in `boxes`, the range of h as (min, max) in `h_range`. min and max are exact, so any
+// grouping gives the same.
 template <simd::Path kPath>
-[[gnu::always_inline]] inline void block_boxes_body(const double* x, const double* y, std::size_t n,
-                                                    std::size_t block, double* boxes) {
-  // why: GCC's vector types, lowered to the widest registers of each clone
-  using V = double __attribute__((vector_size(64)));
-  constexpr std::size_t kWidth = sizeof(V) / sizeof(double);
+[[gnu::always_inline]] inline void block_ranges_body(const double* x, const double* y,
+                                                     const double* h, std::size_t n,
+                                                     std::size_t block, double* boxes,
+                                                     double* h_range) {
+  // why: GCC's vector types, as wide as the path's registers (2, 4 or 8 doubles); wider ones
+  // than the registers are lowered to a compare and a store per lane, twice the cost of the
+  // whole walk. The scalar path has no vector (kWidth 1: the loop at the end does it all).
+  constexpr std::size_t kBytes = kPath == simd::Path::kAvx512 ? 64
+                                 : kPath == simd::Path::kAvx2 ? 32
+                                                              : 16;
+  using V = typename DoubleVector<kBytes>::type;
+  constexpr std::size_t kWidth = kPath == simd::Path::kScalar ? 1 : kBytes / sizeof(double);
   const auto load = [](V& v, const double* p) { std::memcpy(&v, p, sizeof(V)); };
-  // the extreme of the lanes, folding halves onto each other
-  const auto fold = [](V v, auto smaller) {
-    const auto keep = [&](const V& w) { v = smaller(w, v) ? w : v; };
-    // why: clang (the fuzz build, tests/fuzz) spells GCC's shuffle with constant lanes
-#if defined(__clang__)
-    keep(__builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
-    keep(__builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5));
-    keep(__builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6));
-#else
-    using Lanes = std::int64_t __attribute__((vector_size(64)));
-    keep(__builtin_shuffle(v, Lanes{4, 5, 6, 7, 0, 1, 2, 3}));
-    keep(__builtin_shuffle(v, Lanes{2, 3, 0, 1, 6, 7, 4, 5}));
-    keep(__builtin_shuffle(v, Lanes{1, 0, 3, 2, 5, 4, 7, 6}));
-#endif
-    return v[0];
+  // the extreme of the lanes and `r`
+  const auto fold = [](const V& v, double r, auto smaller) {
+    for (std::size_t l = 0; l < kWidth; ++l) r = smaller(v[l], r) ? v[l] : r;
+    return r;
   };
-  const auto below = [](const V& a, const V& b) { return a < b; };
-  const auto above = [](const V& a, const V& b) { return a > b; };
+  const auto below = [](double a, double b) { return a < b; };
+  const auto above = [](double a, double b) { return a > b; };
   for (std::size_t start = 0, b = 0; start < n; start += block, ++b) {
     const std::size_t end = std::min(n, start + block);
     double* box = boxes + 4 * b;
+    double* range = h_range + 2 * b;
     std::size_t k = start;
     box[0] = box[1] = x[start];
     box[2] = box[3] = y[start];
-    // why: GCC lowers vector types to the baseline's vectors even where the vectoriser is off,
-    // so the scalar path keeps to the loop below
-    if (kPath != simd::Path::kScalar && end - start >= kWidth) {
-      V xlo, ylo;
+    range[0] = range[1] = h[start];
+    if (kWidth > 1 && end - start >= kWidth) {
+      V xlo, ylo, hlo;
       load(xlo, x + k);
       load(ylo, y + k);
-      V xhi = xlo, yhi = ylo;
+      load(hlo, h + k);
+      V xhi = xlo, yhi = ylo, hhi = hlo;
       for (k += kWidth; k + kWidth <= end; k += kWidth) {
-        V vx, vy;
+        V vx, vy, vh;
         load(vx, x + k);
         load(vy, y + k);
+        load(vh, h + k);
         xlo = vx < xlo ? vx : xlo;
         xhi = vx > xhi ? vx : xhi;
         ylo = vy < ylo ? vy : ylo;
         yhi = vy > yhi ? vy : yhi;
+        hlo = vh < hlo ? vh : hlo;
+        hhi = vh > hhi ? vh : hhi;
       }
-      box[0] = fold(xlo, below);
-      box[1] = fold(xhi, above);
-      box[2] = fold(ylo, below);
-      box[3] = fold(yhi, above);
+      box[0] = fold(xlo, box[0], below);
+      box[1] = fold(xhi, box[1], above);
+      box[2] = fold(ylo, box[2], below);
+      box[3] = fold(yhi, box[3], above);
+      range[0] = fold(hlo, range[0], below);
+      range[1] = fold(hhi, range[1], above);
     }
     for (; k < end; ++k) {
       box[0] = std::min(box[0], x[k]);
       box[1] = std::max(box[1], x[k]);
       box[2] = std::min(box[2], y[k]);
       box[3] = std::max(box[3], y[k]);
+      range[0] = std::min(range[0], h[k]);
+      range[1] = std::max(range[1], h[k]);
     }
   }
 }
 
-PLUMETRACE_SIMD_VERSIONS(block_boxes,
-                         (const double* x, const double* y, std::size_t n, std::size_t block,
-                          double* boxes),
-                         (x, y, n, block, boxes))
+PLUMETRACE_SIMD_VERSIONS(block_ranges,
+                         (const double* x, const double* y, const double* h, std::size_t n,
+                          std::size_t block, double* boxes, double* h_range),
+                         (x, y, h, n, block, boxes, h_range))
 
 }  // namespace
 
@@ -326,15 +347,9 @@ void FilamentPlume::update_bounds() {
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   bounds_.resize(4 * blocks);  // allocates only past the capacity
-  block_boxes(simd::active(), x_.data(), y_.data(), n, kBlock, bounds_.data());
   h_range_.resize(2 * blocks);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const auto first = h_.begin() + static_cast<std::ptrdiff_t>(b * kBlock);
-    const auto last = h_.begin() + static_cast<std::ptrdiff_t>(std::min(n, (b + 1) * kBlock));
-    const auto [lo, hi] = std::minmax_element(first, last);
-    h_range_[2 * b] = *lo;
-    h_range_[2 * b + 1] = *hi;
-  }
+  block_ranges(simd::active(), x_.data(), y_.data(), h_.data(), n, kBlock, bounds_.data(),
+               h_range_.data());
 }
 
 void FilamentPlume::move(const WindField& wind, double dt) {

@@ -175,9 +175,14 @@ template <bool kArea>
                                              std::int64_t n, double dx, double dy,
                                              std::uint64_t key, double stddev, double gamma) {
   const double half_gamma = 0.5 * gamma;
+  // why: counter 2i's hash input key + 2i kGamma kept by one addition a filament (wrapping as
+  // the product does, so the same values), not a 64-bit multiply: AVX2 and SSE2 have no vector
+  // one and build each from three 32-bit multiplies
+  std::uint64_t input = key;
   for (std::int64_t i = 0; i < n; ++i) {
     float a, b;
-    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * i)), a, b);
+    vmath::normal_pair(vmath::mix64(input), a, b);
+    input += 2 * vmath::kGamma;
     x[i] += dx + stddev * static_cast<double>(a);
     y[i] += dy + stddev * static_cast<double>(b);
     if constexpr (kArea) {
@@ -203,9 +208,11 @@ template <simd::Path kPath>
   }
   const std::int64_t half = n / 2;
   double* __restrict z2 = z + half;
+  std::uint64_t input = key + vmath::kGamma;  // counter 2j + 1's, as above
   for (std::int64_t j = 0; j < half; ++j) {
     float a, b;
-    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * j + 1)), a, b);
+    vmath::normal_pair(vmath::mix64(input), a, b);
+    input += 2 * vmath::kGamma;
     z[j] += dz + stddev * static_cast<double>(a);
     z2[j] += dz + stddev * static_cast<double>(b);
   }

@@ -37,6 +37,7 @@
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/evidence.hpp"
@@ -1742,6 +1743,9 @@ void bind_team(py::module_& m,
 PYBIND11_MODULE(_core, m) {
   m.doc() = "plumetrace C++ core (use the plumetrace package, not this module)";
   m.attr("__version__") = std::string(pt::version());
+  // why: PLUMETRACE_SIMD is read at import, so that a name this machine does not run fails
+  // here (ValueError, naming the variable) before any work
+  pt::simd::active();
 
   py::register_exception<pt::ConfigError>(m, "ConfigError", PyExc_ValueError);
   py::register_exception<pt::IoError>(m, "IoError", PyExc_OSError);

@@ -97,9 +97,10 @@ template <simd::Path kPath>
                                                      const double* h, std::size_t n,
                                                      std::size_t block, double* boxes,
                                                      double* h_range) {
-  // why: GCC's vector types, as wide as the path's registers (2, 4 or 8 doubles); wider ones
-  // than the registers are lowered to a compare and a store per lane, twice the cost of the
-  // whole walk. The scalar path has no vector (kWidth 1: the loop at the end does it all).
+  // why: GCC's vector types, as wide as the path's registers (2, 4 or 8 doubles); vectors wider
+  // than the registers are lowered to a compare and a store per lane (with 8 doubles on AVX2
+  // this loop cost as much as the whole walk). The scalar path has none (kWidth 1: the loop at
+  // the end does it all).
   constexpr std::size_t kBytes = kPath == simd::Path::kAvx512 ? 64
                                  : kPath == simd::Path::kAvx2 ? 32
                                                               : 16;
@@ -121,30 +122,32 @@ template <simd::Path kPath>
     box[0] = box[1] = x[start];
     box[2] = box[3] = y[start];
     range[0] = range[1] = h[start];
-    if (kWidth > 1 && end - start >= kWidth) {
-      V xlo, ylo, hlo;
-      load(xlo, x + k);
-      load(ylo, y + k);
-      load(hlo, h + k);
-      V xhi = xlo, yhi = ylo, hhi = hlo;
-      for (k += kWidth; k + kWidth <= end; k += kWidth) {
-        V vx, vy, vh;
-        load(vx, x + k);
-        load(vy, y + k);
-        load(vh, h + k);
-        xlo = vx < xlo ? vx : xlo;
-        xhi = vx > xhi ? vx : xhi;
-        ylo = vy < ylo ? vy : ylo;
-        yhi = vy > yhi ? vy : yhi;
-        hlo = vh < hlo ? vh : hlo;
-        hhi = vh > hhi ? vh : hhi;
+    if constexpr (kWidth > 1) {
+      if (end - start >= kWidth) {
+        V xlo, ylo, hlo;
+        load(xlo, x + k);
+        load(ylo, y + k);
+        load(hlo, h + k);
+        V xhi = xlo, yhi = ylo, hhi = hlo;
+        for (k += kWidth; k + kWidth <= end; k += kWidth) {
+          V vx, vy, vh;
+          load(vx, x + k);
+          load(vy, y + k);
+          load(vh, h + k);
+          xlo = vx < xlo ? vx : xlo;
+          xhi = vx > xhi ? vx : xhi;
+          ylo = vy < ylo ? vy : ylo;
+          yhi = vy > yhi ? vy : yhi;
+          hlo = vh < hlo ? vh : hlo;
+          hhi = vh > hhi ? vh : hhi;
+        }
+        box[0] = fold(xlo, box[0], below);
+        box[1] = fold(xhi, box[1], above);
+        box[2] = fold(ylo, box[2], below);
+        box[3] = fold(yhi, box[3], above);
+        range[0] = fold(hlo, range[0], below);
+        range[1] = fold(hhi, range[1], above);
       }
-      box[0] = fold(xlo, box[0], below);
-      box[1] = fold(xhi, box[1], above);
-      box[2] = fold(ylo, box[2], below);
-      box[3] = fold(yhi, box[3], above);
-      range[0] = fold(hlo, range[0], below);
-      range[1] = fold(hhi, range[1], above);
     }
     for (; k < end; ++k) {
       box[0] = std::min(box[0], x[k]);

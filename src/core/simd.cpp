@@ -58,10 +58,9 @@ std::vector<std::string_view> runnable_names() {
   return out;
 }
 
-// the selected path, or -1 before the first select() or active()
-std::atomic<int> g_active{-1};
-
 }  // namespace
+
+std::atomic<int> detail::selected{-1};
 
 std::string_view name(Path path) {
   switch (path) {
@@ -125,21 +124,19 @@ Path parse(std::string_view text) {
 
 void select(Path path) {
   if (!available(path)) parse(name(path));  // throws, saying why
-  g_active.store(static_cast<int>(path), std::memory_order_relaxed);
+  detail::selected.store(static_cast<int>(path), std::memory_order_relaxed);
 }
 
 void select(std::string_view text) { select(parse(text)); }
 
-Path active() {
-  const int current = g_active.load(std::memory_order_relaxed);
-  if (current >= 0) return static_cast<Path>(current);
+Path detail::first_active() {
   const char* env = std::getenv("PLUMETRACE_SIMD");
   const Path path = env == nullptr || *env == '\0' ? best() : parse(env);
   // why: threads racing here all read the same variable and store the same path, and a path
   // selected meanwhile is kept
   int unset = -1;
-  g_active.compare_exchange_strong(unset, static_cast<int>(path), std::memory_order_relaxed);
-  return static_cast<Path>(g_active.load(std::memory_order_relaxed));
+  selected.compare_exchange_strong(unset, static_cast<int>(path), std::memory_order_relaxed);
+  return static_cast<Path>(selected.load(std::memory_order_relaxed));
 }
 
 std::string describe() {

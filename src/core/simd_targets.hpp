@@ -40,28 +40,31 @@
 #define PLUMETRACE_UNPAREN(...) __VA_ARGS__
 
 // PLUMETRACE_SIMD_VERSIONS(NAME, (PARAMS), (ARGS)) defines void NAME(simd::Path path, PARAMS),
-// which runs NAME_body<path>(ARGS) as compiled for that path: one function per path this build
-// has (NAME_scalar, NAME_baseline, NAME_avx2, NAME_avx512, each with its target), the body
-// inlined into each (declare it [[gnu::always_inline]] and template <simd::Path kPath>). A path
-// this build lacks runs the baseline; callers pass simd::active() or an available path.
-#define PLUMETRACE_SIMD_VERSIONS(NAME, PARAMS, ARGS)                                              \
-  PLUMETRACE_SCALAR_TARGET static void NAME##_scalar PARAMS {                                     \
-    NAME##_body<::plumetrace::simd::Path::kScalar> ARGS;                                          \
-  }                                                                                               \
-  static void NAME##_baseline PARAMS { NAME##_body<::plumetrace::simd::Path::kBaseline> ARGS; }   \
-  PLUMETRACE_IF_AVX2(PLUMETRACE_AVX2_TARGET static void NAME##_avx2 PARAMS {                      \
-    NAME##_body<::plumetrace::simd::Path::kAvx2> ARGS;                                            \
-  })                                                                                              \
-  PLUMETRACE_IF_AVX512(PLUMETRACE_AVX512_TARGET static void NAME##_avx512 PARAMS {                \
-    NAME##_body<::plumetrace::simd::Path::kAvx512> ARGS;                                          \
-  })                                                                                              \
-  void NAME(::plumetrace::simd::Path path, PLUMETRACE_UNPAREN PARAMS) {                           \
-    switch (path) {                                                                               \
-      case ::plumetrace::simd::Path::kScalar:                                                     \
-        return NAME##_scalar ARGS;                                                                \
-        PLUMETRACE_IF_AVX2(case ::plumetrace::simd::Path::kAvx2 : return NAME##_avx2 ARGS;)       \
-        PLUMETRACE_IF_AVX512(case ::plumetrace::simd::Path::kAvx512 : return NAME##_avx512 ARGS;) \
-      default:                                                                                    \
-        return NAME##_baseline ARGS;                                                              \
-    }                                                                                             \
-  }
+// which runs NAME_body<path>(ARGS) as compiled for that path, and NAME_for(path), which returns
+// that version (to call it many times, or with no more arguments than PARAMS): one function per
+// path this build has (NAME_scalar, NAME_baseline, NAME_avx2, NAME_avx512, each with its
+// target), the body inlined into each (declare it [[gnu::always_inline]] and
+// template <simd::Path kPath>). A path this build lacks gets the baseline; callers pass
+// simd::active() or an available path.
+#define PLUMETRACE_SIMD_VERSIONS(NAME, PARAMS, ARGS)                                            \
+  PLUMETRACE_SCALAR_TARGET static void NAME##_scalar PARAMS {                                   \
+    NAME##_body<::plumetrace::simd::Path::kScalar> ARGS;                                        \
+  }                                                                                             \
+  static void NAME##_baseline PARAMS { NAME##_body<::plumetrace::simd::Path::kBaseline> ARGS; } \
+  PLUMETRACE_IF_AVX2(PLUMETRACE_AVX2_TARGET static void NAME##_avx2 PARAMS {                    \
+    NAME##_body<::plumetrace::simd::Path::kAvx2> ARGS;                                          \
+  })                                                                                            \
+  PLUMETRACE_IF_AVX512(PLUMETRACE_AVX512_TARGET static void NAME##_avx512 PARAMS {              \
+    NAME##_body<::plumetrace::simd::Path::kAvx512> ARGS;                                        \
+  })                                                                                            \
+  auto NAME##_for(::plumetrace::simd::Path path)->decltype(&NAME##_baseline) {                  \
+    switch (path) {                                                                             \
+      case ::plumetrace::simd::Path::kScalar:                                                   \
+        return &NAME##_scalar;                                                                  \
+        PLUMETRACE_IF_AVX2(case ::plumetrace::simd::Path::kAvx2 : return &NAME##_avx2;)         \
+        PLUMETRACE_IF_AVX512(case ::plumetrace::simd::Path::kAvx512 : return &NAME##_avx512;)   \
+      default:                                                                                  \
+        return &NAME##_baseline;                                                                \
+    }                                                                                           \
+  }                                                                                             \
+  void NAME(::plumetrace::simd::Path path, PLUMETRACE_UNPAREN PARAMS) { NAME##_for(path) ARGS; }

@@ -504,11 +504,12 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   const double margin = 1.0 + 1e-9 + 4.0 * static_cast<double>(n) * 0x1p-52;
   const simd::Path path = simd::active();
+  const loops::KernelsLoop kernels = loops::kernels_for(path);
   const auto block_terms = [&](std::size_t b) {
     const std::size_t start = b * kBlock;
     const std::size_t m = std::min(kBlock, n - start);
-    loops::kernels(path, u, x_.data() + start, y_.data() + start, z_.data() + start,
-                   h_.data() + start, static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
+            static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
     return m;
   };
   // the blocks within the cut-off, in index order, and for a threshold test what each can add
@@ -540,8 +541,9 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   }
   if (test) {
     // what each can add at most, in a vector loop
-    loops::block_most(path, e2.data(), h_lo.data(), h_hi.data(), count.data(),
-                      static_cast<std::int64_t>(near.size()), scale, params_.kernel, most.data());
+    loops::block_most_for(path)(e2.data(), h_lo.data(), h_hi.data(), count.data(),
+                                static_cast<std::int64_t>(near.size()), scale, params_.kernel,
+                                most.data());
     for (std::size_t c = 0; c < near.size(); ++c) bound += most[c];
     if (bound * margin < stop_at) return bound;
     // the candidates by what each can add, largest first (insertion sort: a few), and what

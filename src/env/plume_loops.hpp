@@ -30,11 +30,30 @@ void kernels(simd::Path path, const Vec3& u, const double* __restrict x, const d
              const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
              Kernel kernel, double cut2, double* __restrict out);
 
+/// kernels() without its path argument.
+using KernelsLoop = void (*)(const Vec3& u, const double* __restrict x, const double* __restrict y,
+                             const double* __restrict z, const double* __restrict h, std::int64_t m,
+                             double scale, Kernel kernel, double cut2, double* __restrict out);
+
+/// The version of kernels() for `path`, for a caller that calls it many times. why: with no
+/// more arguments than registers and the stack hold today, the calling loop keeps its
+/// registers (one argument more spilled the query's loop counters, 6% of a query).
+KernelsLoop kernels_for(simd::Path path);
+
 /// What each of `count` blocks can add at most at a query (`most`), given its squared
 /// horizontal distance e2 from the query, its filaments' least and greatest 1 / w and their
 /// number m (FilamentPlume::sum_kernels).
 void block_most(simd::Path path, const double* __restrict e2, const double* __restrict h_lo,
                 const double* __restrict h_hi, const double* __restrict m, std::int64_t count,
                 double scale, Kernel kernel, double* __restrict most);
+
+/// block_most() without its path argument.
+using BlockMostLoop = void (*)(const double* __restrict e2, const double* __restrict h_lo,
+                               const double* __restrict h_hi, const double* __restrict m,
+                               std::int64_t count, double scale, Kernel kernel,
+                               double* __restrict most);
+
+/// The version of block_most() for `path`.
+BlockMostLoop block_most_for(simd::Path path);
 
 }  // namespace plumetrace::loops

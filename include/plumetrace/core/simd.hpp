@@ -5,6 +5,7 @@
 // (docs/performance.md). The choice is the process's: the environment variable PLUMETRACE_SIMD
 // names it, select() changes it.
 
+#include <atomic>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,10 +48,21 @@ void select(Path path);
 /// Runs the path `name` names from now on (parse(), then select()).
 void select(std::string_view name);
 
+namespace detail {
+/// The path in use as an int, -1 until the first select() or active().
+extern std::atomic<int> selected;
+/// active() at its first call: reads PLUMETRACE_SIMD.
+Path first_active();
+}  // namespace detail
+
 /// The path in use: the last selected, else PLUMETRACE_SIMD's (read at the first call; unset
 /// or empty means "auto"). Throws std::invalid_argument while PLUMETRACE_SIMD names no available
 /// path and none was selected.
-Path active();
+// why: inline, one relaxed load, as every odor query asks it (a call cost 2-5% of a query)
+inline Path active() {
+  const int path = detail::selected.load(std::memory_order_relaxed);
+  return path >= 0 ? static_cast<Path>(path) : detail::first_active();
+}
 
 /// One line for people: the path in use and those available, e.g. "avx2 (available: scalar,
 /// sse2, avx2)".

@@ -10,6 +10,9 @@
 // - baseline: as the build compiles for the architecture (SSE2 on x86-64, NEON on aarch64)
 // - avx2, avx512: x86-64 with GCC, the same source compiled for x86-64-v3 and x86-64-v4
 //   (CMake: PLUMETRACE_VECTOR_CLONES=OFF leaves both out, PLUMETRACE_AVX512=OFF the second)
+//
+// PLUMETRACE_SIMD_VERSIONS names plumetrace::simd::Path: its users include
+// plumetrace/core/simd.hpp (not included here, as simd.cpp includes this file).
 
 #if defined(__GNUC__) && !defined(__clang__)
 #define PLUMETRACE_SCALAR_TARGET [[gnu::optimize("no-tree-vectorize")]]

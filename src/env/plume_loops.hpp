@@ -35,9 +35,8 @@ using KernelsLoop = void (*)(const Vec3& u, const double* __restrict x, const do
                              const double* __restrict z, const double* __restrict h, std::int64_t m,
                              double scale, Kernel kernel, double cut2, double* __restrict out);
 
-/// The version of kernels() for `path`, for a caller that calls it many times. why: with no
-/// more arguments than registers and the stack hold today, the calling loop keeps its
-/// registers (one argument more spilled the query's loop counters, 6% of a query).
+/// The version of kernels() for `path`, for a caller that calls it many times (a query: once
+/// per block) as the loader's choice was called, with no path argument to pass or test.
 KernelsLoop kernels_for(simd::Path path);
 
 /// What each of `count` blocks can add at most at a query (`most`), given its squared

@@ -58,7 +58,7 @@ Path first_active();
 /// The path in use: the last selected, else PLUMETRACE_SIMD's (read at the first call; unset
 /// or empty means "auto"). Throws std::invalid_argument while PLUMETRACE_SIMD names no available
 /// path and none was selected.
-// why: inline, one relaxed load, as every odor query asks it (a call cost 2-5% of a query)
+// why: inline, one relaxed load: every odor query asks it
 inline Path active() {
   const int path = detail::selected.load(std::memory_order_relaxed);
   return path >= 0 ? static_cast<Path>(path) : detail::first_active();

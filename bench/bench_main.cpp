@@ -1,11 +1,22 @@
 // Google Benchmark cases: one plume step, one concentration query, one whole run per algorithm.
+//
+// --simd=LIST (before Google Benchmark's own options; LIST: "all", or names such as
+// "scalar,avx2") runs the benchmarks of the vector loops once per path listed, named
+// BM_PlumeStep<avx2>/0 and so on; without it they run on the path PLUMETRACE_SIMD chooses
+// (docs/performance.md, "Vector paths").
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/meander_wind.hpp"
@@ -58,7 +69,6 @@ void BM_PlumeStep(benchmark::State& state) {
       static_cast<double>(state.iterations()) * static_cast<double>(plume.size()),
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_PlumeStep)->Arg(0)->Arg(1);
 
 // one step of the default meandering wind (17 x 5 nodes, dt 0.032 s): the corner noise, the
 // edges and the inside's substeps
@@ -88,7 +98,6 @@ void bench_query(benchmark::State& state, Query query) {
 void BM_ConcentrationQuery(benchmark::State& state) {
   bench_query(state, [](const OdorField& p, const Vec3& u, double) { return p.concentration(u); });
 }
-BENCHMARK(BM_ConcentrationQuery);
 
 // what a robot asks each step: does the concentration reach the threshold
 void BM_OdorQuery(benchmark::State& state) {
@@ -96,7 +105,6 @@ void BM_OdorQuery(benchmark::State& state) {
     return p.reaches(u, threshold) ? 1.0 : 0.0;
   });
 }
-BENCHMARK(BM_OdorQuery);
 
 // one decision of 1024 vector-environment agents at decision interval 1 with random headings
 // (redrawn every 16 steps), groups of range(0) agents per plume (range 1: 1 concentration
@@ -146,12 +154,6 @@ void BM_WholeRun(benchmark::State& state) {
                                                          std::llround(s.sim.warmup / s.sim.dt)),
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-// why: every built-in algorithm, the baselines included, without listing their indices
-BENCHMARK(BM_WholeRun)
-    ->ArgsProduct({benchmark::CreateDenseRange(
-                       0, static_cast<std::int64_t>(library_algorithms().size()) - 1, 1),
-                   {0, 1}})
-    ->Unit(benchmark::kMillisecond);
 
 // one update of the particle filter at its default particle count (the decision it takes once
 // per update_interval; the steps between add one wind sample each): the robot 3 m downwind of a
@@ -417,7 +419,85 @@ void BM_RowMessage(benchmark::State& state) {
 }
 BENCHMARK(BM_RowMessage)->Arg(10);
 
+// the benchmarks that run the vector loops, registered in main once per path --simd lists
+struct PathBenchmark {
+  const char* name;
+  void (*run)(benchmark::State&);
+  void (*shape)(benchmark::internal::Benchmark*);
+};
+
+const PathBenchmark kPathBenchmarks[] = {
+    {"BM_PlumeStep", BM_PlumeStep, [](benchmark::internal::Benchmark* b) { b->Arg(0)->Arg(1); }},
+    {"BM_ConcentrationQuery", BM_ConcentrationQuery, [](benchmark::internal::Benchmark*) {}},
+    {"BM_OdorQuery", BM_OdorQuery, [](benchmark::internal::Benchmark*) {}},
+    // why: every built-in algorithm, the baselines included, without listing their indices
+    {"BM_WholeRun", BM_WholeRun,
+     [](benchmark::internal::Benchmark* b) {
+       b->ArgsProduct({benchmark::CreateDenseRange(
+                           0, static_cast<std::int64_t>(library_algorithms().size()) - 1, 1),
+                       {0, 1}})
+           ->Unit(benchmark::kMillisecond);
+     }},
+};
+
+// the paths --simd=LIST names ("all": every available one), in the order listed
+std::vector<simd::Path> parse_paths(const std::string& list) {
+  if (list == "all") return simd::available();
+  std::vector<simd::Path> paths;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = list.find(',', start);
+    paths.push_back(simd::parse(list.substr(start, comma - start)));
+    if (comma == std::string::npos) return paths;
+    start = comma + 1;
+  }
+}
+
 }  // namespace
 }  // namespace plumetrace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  using namespace plumetrace;
+  // --simd=LIST, taken out before Google Benchmark reads the rest
+  std::string list;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--simd=", 7) == 0) {
+      list = argv[i] + 7;
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  std::vector<simd::Path> paths;
+  simd::Path chosen;
+  try {
+    chosen = simd::active();
+    if (!list.empty()) paths = parse_paths(list);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr,
+                 "plumetrace_bench: %s (--simd=all, or a list such as --simd=scalar,avx2)\n",
+                 e.what());
+    return 2;
+  }
+  for (const PathBenchmark& b : kPathBenchmarks) {
+    if (paths.empty()) {
+      b.shape(benchmark::RegisterBenchmark(b.name, b.run));
+      continue;
+    }
+    for (const simd::Path path : paths) {
+      const std::string name = std::string(b.name) + "<" + std::string(simd::name(path)) + ">";
+      b.shape(benchmark::RegisterBenchmark(name.c_str(), [b, path, chosen](benchmark::State& s) {
+        simd::select(path);
+        b.run(s);
+        simd::select(chosen);  // the other benchmarks run on the path chosen at the start
+      }));
+    }
+  }
+  benchmark::AddCustomContext("simd", simd::describe());
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,6 +1,7 @@
 // The plumetrace command: registers the subcommands (cli/commands/) and runs the one asked for.
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "errors.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 
 namespace plumetrace::cli {
@@ -65,6 +67,13 @@ int main(int argc, char** argv) {
     return kBadInput;
   } catch (...) {
     return report_error(std::current_exception());
+  }
+
+  // why: a PLUMETRACE_SIMD naming no path this machine runs is bad input, found before any work
+  try {
+    simd::active();
+  } catch (const std::invalid_argument& e) {
+    return report_error(std::make_exception_ptr(ConfigError(e.what())));
   }
 
   const Command* chosen = nullptr;

@@ -37,6 +37,7 @@
 #include "plumetrace/agent/controllers.hpp"
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/experiment/campaign.hpp"
 #include "plumetrace/experiment/evidence.hpp"
@@ -1217,8 +1218,7 @@ pt::TaskRunner process_runner(int processes) {
       return std::chrono::duration<double>(Clock::now() - start).count();
     };
     const std::vector<pt::TaskGroup> groups =
-        pt::split_groups(pt::plume_groups(sweeps, tasks, options.share_plumes),
-                         2 * static_cast<std::size_t>(processes));
+        pt::work_groups(sweeps, tasks, options.share_plumes, static_cast<std::size_t>(processes));
     const std::size_t workers = std::min(static_cast<std::size_t>(processes), groups.size());
     if (workers <= 1) {
       pt::CampaignOptions one = options;
@@ -1743,6 +1743,9 @@ void bind_team(py::module_& m,
 PYBIND11_MODULE(_core, m) {
   m.doc() = "plumetrace C++ core (use the plumetrace package, not this module)";
   m.attr("__version__") = std::string(pt::version());
+  // why: PLUMETRACE_SIMD is read at import, so that a name this machine does not run fails
+  // here (ValueError, naming the variable) before any work
+  pt::simd::active();
 
   py::register_exception<pt::ConfigError>(m, "ConfigError", PyExc_ValueError);
   py::register_exception<pt::IoError>(m, "IoError", PyExc_OSError);

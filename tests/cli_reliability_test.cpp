@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "plumetrace/core/simd.hpp"
 #include "support/command.hpp"
 #include "support/temp_path.hpp"
 
@@ -47,6 +48,36 @@ void expect_refused(const Output& o, const std::string& names, const std::string
   EXPECT_EQ(o.code, 2) << what << "\n" << o.err;
   EXPECT_EQ(o.out, "") << what;
   EXPECT_NE(o.err.find(names), std::string::npos) << what << " said: " << o.err;
+}
+
+// PLUMETRACE_SIMD forces a version of the vector loops: a run in the meandering wind (the
+// plume's and the wind's loops) prints the same bytes on every path this machine runs as on the
+// default; a name it does not run is bad input, refused before any work (the trace file is not
+// created)
+TEST(CliReliability, EverySimdPathRunsTheSameAndOneTheMachineLacksIsRefusedFirst) {
+  const std::string run = "run --algorithm surge-spiral --seed 4 --set wind.model=meander --json";
+  const auto with = [](const std::string& simd, const std::string& args) {
+    return testing::run_command("PLUMETRACE_SIMD='" + simd + "' timeout 120 " + kCli + " " + args);
+  };
+  const Output plain = cli(run);
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  for (const simd::Path p : simd::available()) {
+    const Output o = with(std::string(simd::name(p)), run);
+    ASSERT_EQ(o.code, 0) << simd::name(p) << ": " << o.err;
+    EXPECT_EQ(o.out, plain.out) << simd::name(p);
+  }
+  const std::string trace = testing::temp_path("simd", ".json");
+  expect_refused(with("fast", run + " --trace " + trace),
+                 "PLUMETRACE_SIMD: unknown path \"fast\" (one of auto, scalar", "unknown name");
+  EXPECT_FALSE(std::filesystem::exists(trace));
+#if defined(__x86_64__)
+  if (simd::available(simd::Path::kAvx512)) {
+    GTEST_SKIP() << "this machine runs the AVX-512 path: nothing to refuse";
+  }
+  expect_refused(with("avx512", run + " --trace " + trace), "PLUMETRACE_SIMD: \"avx512\": this ",
+                 "a path the machine lacks");
+  EXPECT_FALSE(std::filesystem::exists(trace));
+#endif
 }
 
 // F3: any exception reaches main's catch-all; out of memory is exit 3, not an abort (134)

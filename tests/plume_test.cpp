@@ -9,10 +9,12 @@
 #include "env/plume_loops.hpp"
 #include "env/vector_math.hpp"
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/env/environment.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/wind.hpp"
 #include "plumetrace/sim/scenario.hpp"
+#include "plumetrace/sim/world.hpp"
 #include "support/loop_checks.hpp"
 #include "support/stepped_wind.hpp"
 
@@ -487,8 +489,8 @@ TEST(Plume, FarrellDispersionSpreadsCentresAs2DtAndSquaredWidthsAsRateT) {
     std::vector<double> x(n, 0.0), y(n, 0.0), z(n, 0.0), w(n, 0.1), h(n, 10.0);
     Rng rng(2002);
     for (int k = 0; k < steps; ++k) {
-      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, {},
-                             rng.next_u64(), walk_stddev(p, dt), width_growth(p, dt), true);
+      loops::drift_walk_grow(simd::active(), x.data(), y.data(), z.data(), w.data(), h.data(), n,
+                             {}, rng.next_u64(), walk_stddev(p, dt), width_growth(p, dt), true);
     }
     const double expected = 2.0 * p.relative_diffusivity * t;
     for (const auto* axis : {&x, &y, &z}) {
@@ -540,10 +542,52 @@ TEST(Plume, SameSeedSamePlume) {
   }
 }
 
-// drift_walk_grow (both width growths) and kernels (both kernels) against the scalar formulas
-// (tests/support/loop_checks.hpp; the 64-bit ARM build runs the same check, tests/bits)
+// Every path this machine runs (simd::available(): scalar, the baseline, AVX2, AVX-512) against
+// the scalar formulas (tests/support/loop_checks.hpp; the 64-bit ARM build runs the same check,
+// tests/bits)
 TEST(Plume, VectorisedLoopsGiveTheScalarFormulasBitForBit) {
-  EXPECT_EQ(testing::plume_loops_mismatch(), "");
+  std::string tested;
+  EXPECT_EQ(testing::plume_loops_mismatch(&tested), "");
+  std::printf("[ measured ] plume loop paths compared on this machine:%s\n", tested.c_str());
+}
+
+// A plume stepped and queried under each available path (simd::select, as PLUMETRACE_SIMD
+// does) is the same plume, to the bit, as under the scalar path: positions, widths and the
+// answers to concentration and threshold queries, in the laminar and the meandering wind.
+TEST(Plume, EverySimdPathStepsAndQueriesTheSamePlume) {
+  const simd::Path before = simd::active();
+  for (const bool meander : {false, true}) {
+    Scenario s;
+    if (meander) s.wind.model = WindModel::kMeander;
+    const auto run = [&](simd::Path path) {
+      simd::select(path);
+      Environment env = make_environment(s, 5, 0);
+      std::vector<double> answers;
+      for (int k = 0; k < 400; ++k) {
+        step(env, s.sim.dt);
+        if (k % 40 != 39) continue;
+        for (const Vec3 u : {Vec3{2.0, 0.1, 0.0}, Vec3{8.0, -0.3, 0.0}, Vec3{1.0, 0.0, 0.0}}) {
+          answers.push_back(env.odor->concentration(u));
+          answers.push_back(env.odor->reaches(u, s.odor.threshold) ? 1.0 : 0.0);
+        }
+      }
+      const OdorSnapshot snap = env.odor->snapshot();
+      for (const auto* v :
+           {&snap.filaments.x, &snap.filaments.y, &snap.filaments.z, &snap.filaments.w}) {
+        answers.insert(answers.end(), v->begin(), v->end());
+      }
+      return answers;
+    };
+    const std::vector<double> scalar = run(simd::Path::kScalar);
+    for (const simd::Path path : simd::available()) {
+      const std::vector<double> got = run(path);
+      ASSERT_EQ(got.size(), scalar.size()) << simd::name(path);
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i], scalar[i]) << simd::name(path) << " meander " << meander << " " << i;
+      }
+    }
+  }
+  simd::select(before);
 }
 
 using testing::SteppedWind;

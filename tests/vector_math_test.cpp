@@ -1,4 +1,5 @@
-// The branch-free arithmetic of the plume's vector loops against libm and the normal law.
+// The branch-free arithmetic of the plume's vector loops against libm and the normal law, and
+// the choice of their vector path (plumetrace/core/simd.hpp).
 #include "env/vector_math.hpp"
 
 #include <gtest/gtest.h>
@@ -6,9 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "plumetrace/core/geometry.hpp"
+#include "plumetrace/core/simd.hpp"
 
 namespace plumetrace::vmath {
 namespace {
@@ -95,3 +99,81 @@ TEST(VectorMath, NormalPairsFollowTheNormalLawIndependently) {
 
 }  // namespace
 }  // namespace plumetrace::vmath
+
+namespace plumetrace::simd {
+namespace {
+
+// the message of the std::invalid_argument that parse(text) throws ("" when it throws none)
+std::string refusal(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Simd, EveryAvailablePathIsNamedAndAutoIsTheWidest) {
+  const std::vector<Path> paths = available();
+  ASSERT_GE(paths.size(), 2u);
+  EXPECT_EQ(paths[0], Path::kScalar);
+  EXPECT_EQ(paths[1], Path::kBaseline);
+  EXPECT_EQ(best(), paths.back());
+  EXPECT_EQ(parse("auto"), best());
+  for (const Path p : paths) {
+    EXPECT_TRUE(available(p));
+    EXPECT_EQ(parse(name(p)), p) << name(p);
+  }
+#if defined(__x86_64__)
+  EXPECT_EQ(names(), (std::vector<std::string_view>{"auto", "scalar", "sse2", "avx2", "avx512"}));
+#endif
+  // the one line for people names the active path first
+  EXPECT_EQ(describe().rfind(std::string(name(active())) + " (available: scalar, ", 0), 0u)
+      << describe();
+}
+
+TEST(Simd, AnUnknownNameIsRefusedNamingTheVariableAndTheChoices) {
+  for (const std::string bad : {"fast", "", "AVX2", "avx2 "}) {
+    const std::string message = refusal(bad);
+    EXPECT_NE(message.find("PLUMETRACE_SIMD"), std::string::npos) << message;
+    EXPECT_NE(message.find("unknown path \"" + bad + "\""), std::string::npos) << message;
+    for (const std::string_view n : names()) {
+      EXPECT_NE(message.find(n), std::string::npos) << n << ": " << message;
+    }
+  }
+}
+
+// This machine's processor lacks AVX-512, so the refusal is tested for real; on one that has it
+// (and a build with the AVX-512 path) there is nothing to refuse.
+TEST(Simd, APathTheProcessorLacksIsRefusedNamingThoseItRuns) {
+#if !defined(__x86_64__)
+  GTEST_SKIP() << "avx512 is not a path of this architecture (the unknown-name test covers it)";
+#endif
+  if (available(Path::kAvx512)) {
+    GTEST_SKIP() << "this machine runs the AVX-512 path: nothing to refuse";
+  }
+  const std::string message = refusal("avx512");
+  EXPECT_NE(message.find("PLUMETRACE_SIMD: \"avx512\""), std::string::npos) << message;
+  EXPECT_NE(message.find("AVX-512"), std::string::npos) << message;
+  EXPECT_NE(message.find("this machine runs auto, scalar"), std::string::npos) << message;
+  // select() refuses it too and keeps the path in use
+  const Path before = active();
+  EXPECT_THROW(select("avx512"), std::invalid_argument);
+  EXPECT_THROW(select(Path::kAvx512), std::invalid_argument);
+  EXPECT_EQ(active(), before);
+}
+
+TEST(Simd, SelectChangesTheActivePathForEveryLaterCall) {
+  const Path before = active();
+  for (const Path p : available()) {
+    select(name(p));
+    EXPECT_EQ(active(), p);
+  }
+  select("scalar");
+  EXPECT_EQ(active(), Path::kScalar);
+  select(before);
+  EXPECT_EQ(active(), before);
+}
+
+}  // namespace
+}  // namespace plumetrace::simd

@@ -19,6 +19,7 @@
 
 #include "env/wind_loops.hpp"
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/env/environment.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/meander_wind.hpp"
@@ -448,7 +449,8 @@ TEST(MeanderWind, AdvectMovesEveryPointByVelocityTimesDtToTheBit) {
   EXPECT_EQ(testing::wind_advect_mismatch(), "");
 }
 
-// every vector path of the interpolation against the scalar one, on a random grid
+// every path of the interpolation this machine runs (simd::available(): scalar, the baseline,
+// AVX2, AVX-512) against the scalar formulas, point by point, on a random grid
 TEST(MeanderWind, EveryInterpolationPathGivesTheScalarBits) {
   const int nx = 17, ny = 4;
   Rng rng(9);
@@ -468,25 +470,32 @@ TEST(MeanderWind, EveryInterpolationPathGivesTheScalarBits) {
   x[101] = 16.0;
   y[102] = 1.0;
   std::vector<double> sx = x, sy = y, sz = z;
-  wind_loops::advect(wind_loops::Path::kScalar, g, sx.data(), sy.data(), sz.data(), 0,
-                     static_cast<std::int64_t>(x.size()), kDt, 0.001);
-  int tested = 0;
-  for (const auto path : {wind_loops::Path::kAvx2, wind_loops::Path::kAvx512}) {
-    if (!wind_loops::available(path)) continue;
-    ++tested;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    int k;
+    double tx, ty, u, v;
+    wind_loops::locate(g, x[i], y[i], k, tx, ty);
+    wind_loops::evaluate(wind_loops::cell_coef(g, k), tx, ty, u, v);
+    sx[i] += u * kDt;
+    sy[i] += v * kDt;
+    sz[i] += 0.001;
+  }
+  std::string tested;
+  for (const simd::Path path : simd::available()) {
+    tested += ' ';
+    tested += simd::name(path);
     for (std::int64_t first : {0, 1, 3}) {
       std::vector<double> vx = x, vy = y, vz = z;
       wind_loops::advect(path, g, vx.data(), vy.data(), vz.data(), first,
                          static_cast<std::int64_t>(x.size()), kDt, 0.001);
       for (std::size_t i = 0; i < x.size(); ++i) {
         const bool moved = static_cast<std::int64_t>(i) >= first;
-        ASSERT_EQ(bits(vx[i]), bits(moved ? sx[i] : x[i])) << i;
-        ASSERT_EQ(bits(vy[i]), bits(moved ? sy[i] : y[i])) << i;
-        ASSERT_EQ(bits(vz[i]), bits(moved ? sz[i] : z[i])) << i;
+        ASSERT_EQ(bits(vx[i]), bits(moved ? sx[i] : x[i])) << simd::name(path) << " " << i;
+        ASSERT_EQ(bits(vy[i]), bits(moved ? sy[i] : y[i])) << simd::name(path) << " " << i;
+        ASSERT_EQ(bits(vz[i]), bits(moved ? sz[i] : z[i])) << simd::name(path) << " " << i;
       }
     }
   }
-  std::printf("[ measured ] vector interpolation paths compared on this machine: %d\n", tested);
+  std::printf("[ measured ] interpolation paths compared on this machine:%s\n", tested.c_str());
 }
 
 TEST(MeanderWind, ARunIsAPureFunctionOfScenarioSeedAndTrial) {

@@ -5,6 +5,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -315,3 +316,11 @@ def test_dir_lists_the_api_and_the_submodules_and_each_resolves():
     assert not [n for n in names if n.startswith("_") and not n.startswith("__")], names
     with pytest.raises(AttributeError, match="no attribute 'nothing'"):
         pt.nothing  # noqa: B018
+
+
+def test_a_simd_path_the_machine_does_not_run_fails_when_the_core_loads_naming_the_variable():
+    env = dict(os.environ, PLUMETRACE_SIMD="fast")
+    r = subprocess.run([sys.executable, "-c", "import plumetrace._core"], env=env,
+                       capture_output=True, text=True)
+    assert r.returncode != 0
+    assert 'ImportError: PLUMETRACE_SIMD: unknown path "fast" (one of auto, scalar' in r.stderr

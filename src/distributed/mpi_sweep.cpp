@@ -147,8 +147,8 @@ CampaignResult coordinate(Ranks& ranks, const std::vector<ExpandedSweep>& sweeps
   std::vector<std::int64_t> per_rank(static_cast<std::size_t>(ranks.size()), 0);
 
   // why: as run_tasks, split groups when there are too few for every thread of the job
-  const auto groups = split_groups(plume_groups(sweeps, tasks, options.share_plumes),
-                                   2 * static_cast<std::size_t>(all_threads));
+  const auto groups =
+      work_groups(sweeps, tasks, options.share_plumes, static_cast<std::size_t>(all_threads));
   std::deque<TaskGroup> queue(groups.begin(), groups.end());
   const auto hand_out = [&](std::int32_t n) {
     std::vector<TaskGroup> block;

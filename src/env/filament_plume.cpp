@@ -5,22 +5,11 @@
 #include <cmath>
 #include <cstring>
 
+#include "../core/simd_targets.hpp"
 #include "plume_loops.hpp"
 #include "plumetrace/core/math.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "vector_math.hpp"
-
-// why: the hot loops get AVX2 and AVX-512 versions chosen at load time; they use only
-// operations that round identically at every width, so every version gives the same bits
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-    !defined(PLUMETRACE_NO_VECTOR_CLONES) && defined(PLUMETRACE_NO_AVX512)
-#define PLUMETRACE_VECTOR_CLONES __attribute__((target_clones("default", "arch=x86-64-v3")))
-#elif defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-    !defined(PLUMETRACE_NO_VECTOR_CLONES)
-#define PLUMETRACE_VECTOR_CLONES \
-  __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
-#else
-#define PLUMETRACE_VECTOR_CLONES
-#endif
 
 namespace plumetrace {
 
@@ -82,69 +71,100 @@ template <Kernel kKernel>
 }
 
 // why: the vector lambdas below are inlined and never cross a call boundary, so GCC's note that
-// passing 64-byte vectors changes the ABI between clones does not apply
+// passing 64-byte vectors changes the ABI between targets does not apply
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-// the x and y range of each block of `block` filaments, as (x min, x max, y min, y max);
-// min and max are exact, so any grouping gives the same
-PLUMETRACE_VECTOR_CLONES
-void block_boxes(const double* x, const double* y, std::size_t n, std::size_t block,
-                 double* boxes) {
-  // why: GCC's vector types, lowered to the widest registers of each clone
-  using V = double __attribute__((vector_size(64)));
-  constexpr std::size_t kWidth = sizeof(V) / sizeof(double);
+// GCC's vector type of kBytes bytes of doubles
+template <std::size_t kBytes>
+struct DoubleVector;
+template <>
+struct DoubleVector<16> {
+  using type = double __attribute__((vector_size(16)));
+};
+template <>
+struct DoubleVector<32> {
+  using type = double __attribute__((vector_size(32)));
+};
+template <>
+struct DoubleVector<64> {
+  using type = double __attribute__((vector_size(64)));
+};
+
+// The bounds of each block of `block` filaments: the x and y range as (x min, x max, y min,
+// y max) in `boxes`, the range of h as (min, max) in `h_range`. min and max are exact, so any
+// grouping gives the same.
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void block_ranges_body(const double* x, const double* y,
+                                                     const double* h, std::size_t n,
+                                                     std::size_t block, double* boxes,
+                                                     double* h_range) {
+  // why: GCC's vector types, as wide as the path's registers (2, 4 or 8 doubles); vectors wider
+  // than the registers are lowered to a compare and a store per lane (with 8 doubles on AVX2
+  // this loop cost as much as the whole walk). The scalar path has none (kWidth 1: the loop at
+  // the end does it all).
+  constexpr std::size_t kBytes = kPath == simd::Path::kAvx512 ? 64
+                                 : kPath == simd::Path::kAvx2 ? 32
+                                                              : 16;
+  using V = typename DoubleVector<kBytes>::type;
+  constexpr std::size_t kWidth = kPath == simd::Path::kScalar ? 1 : kBytes / sizeof(double);
   const auto load = [](V& v, const double* p) { std::memcpy(&v, p, sizeof(V)); };
-  // the extreme of the lanes, folding halves onto each other
-  const auto fold = [](V v, auto smaller) {
-    const auto keep = [&](const V& w) { v = smaller(w, v) ? w : v; };
-    // why: clang (the fuzz build, tests/fuzz) spells GCC's shuffle with constant lanes
-#if defined(__clang__)
-    keep(__builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3));
-    keep(__builtin_shufflevector(v, v, 2, 3, 0, 1, 6, 7, 4, 5));
-    keep(__builtin_shufflevector(v, v, 1, 0, 3, 2, 5, 4, 7, 6));
-#else
-    using Lanes = std::int64_t __attribute__((vector_size(64)));
-    keep(__builtin_shuffle(v, Lanes{4, 5, 6, 7, 0, 1, 2, 3}));
-    keep(__builtin_shuffle(v, Lanes{2, 3, 0, 1, 6, 7, 4, 5}));
-    keep(__builtin_shuffle(v, Lanes{1, 0, 3, 2, 5, 4, 7, 6}));
-#endif
-    return v[0];
+  // the extreme of the lanes and `r`
+  const auto fold = [](const V& v, double r, auto smaller) {
+    for (std::size_t l = 0; l < kWidth; ++l) r = smaller(v[l], r) ? v[l] : r;
+    return r;
   };
-  const auto below = [](const V& a, const V& b) { return a < b; };
-  const auto above = [](const V& a, const V& b) { return a > b; };
+  const auto below = [](double a, double b) { return a < b; };
+  const auto above = [](double a, double b) { return a > b; };
   for (std::size_t start = 0, b = 0; start < n; start += block, ++b) {
     const std::size_t end = std::min(n, start + block);
     double* box = boxes + 4 * b;
+    double* range = h_range + 2 * b;
     std::size_t k = start;
     box[0] = box[1] = x[start];
     box[2] = box[3] = y[start];
-    if (end - start >= kWidth) {
-      V xlo, ylo;
-      load(xlo, x + k);
-      load(ylo, y + k);
-      V xhi = xlo, yhi = ylo;
-      for (k += kWidth; k + kWidth <= end; k += kWidth) {
-        V vx, vy;
-        load(vx, x + k);
-        load(vy, y + k);
-        xlo = vx < xlo ? vx : xlo;
-        xhi = vx > xhi ? vx : xhi;
-        ylo = vy < ylo ? vy : ylo;
-        yhi = vy > yhi ? vy : yhi;
+    range[0] = range[1] = h[start];
+    if constexpr (kWidth > 1) {
+      if (end - start >= kWidth) {
+        V xlo, ylo, hlo;
+        load(xlo, x + k);
+        load(ylo, y + k);
+        load(hlo, h + k);
+        V xhi = xlo, yhi = ylo, hhi = hlo;
+        for (k += kWidth; k + kWidth <= end; k += kWidth) {
+          V vx, vy, vh;
+          load(vx, x + k);
+          load(vy, y + k);
+          load(vh, h + k);
+          xlo = vx < xlo ? vx : xlo;
+          xhi = vx > xhi ? vx : xhi;
+          ylo = vy < ylo ? vy : ylo;
+          yhi = vy > yhi ? vy : yhi;
+          hlo = vh < hlo ? vh : hlo;
+          hhi = vh > hhi ? vh : hhi;
+        }
+        box[0] = fold(xlo, box[0], below);
+        box[1] = fold(xhi, box[1], above);
+        box[2] = fold(ylo, box[2], below);
+        box[3] = fold(yhi, box[3], above);
+        range[0] = fold(hlo, range[0], below);
+        range[1] = fold(hhi, range[1], above);
       }
-      box[0] = fold(xlo, below);
-      box[1] = fold(xhi, above);
-      box[2] = fold(ylo, below);
-      box[3] = fold(yhi, above);
     }
     for (; k < end; ++k) {
       box[0] = std::min(box[0], x[k]);
       box[1] = std::max(box[1], x[k]);
       box[2] = std::min(box[2], y[k]);
       box[3] = std::max(box[3], y[k]);
+      range[0] = std::min(range[0], h[k]);
+      range[1] = std::max(range[1], h[k]);
     }
   }
 }
+
+PLUMETRACE_SIMD_VERSIONS(block_ranges,
+                         (const double* x, const double* y, const double* h, std::size_t n,
+                          std::size_t block, double* boxes, double* h_range),
+                         (x, y, h, n, block, boxes, h_range))
 
 }  // namespace
 
@@ -152,16 +172,21 @@ namespace loops {
 
 namespace {
 
-// the drift, walk and growth of x, y and w; inlined into each clone of drift_walk_grow
+// the drift, walk and growth of x, y and w; inlined into each version of drift_walk_grow
 template <bool kArea>
 [[gnu::always_inline]] inline void walk_grow(double* __restrict x, double* __restrict y,
                                              double* __restrict w, double* __restrict h,
                                              std::int64_t n, double dx, double dy,
                                              std::uint64_t key, double stddev, double gamma) {
   const double half_gamma = 0.5 * gamma;
+  // why: counter 2i's hash input key + 2i kGamma kept by one addition a filament (wrapping as
+  // the product does, so the same values), not a 64-bit multiply: AVX2 and SSE2 have no vector
+  // one and build each from three 32-bit multiplies
+  std::uint64_t input = key;
   for (std::int64_t i = 0; i < n; ++i) {
     float a, b;
-    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * i)), a, b);
+    vmath::normal_pair(vmath::mix64(input), a, b);
+    input += 2 * vmath::kGamma;
     x[i] += dx + stddev * static_cast<double>(a);
     y[i] += dy + stddev * static_cast<double>(b);
     if constexpr (kArea) {
@@ -173,12 +198,12 @@ template <bool kArea>
   }
 }
 
-}  // namespace
-
-PLUMETRACE_VECTOR_CLONES
-void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restrict z,
-                     double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
-                     std::uint64_t key, double stddev, double gamma, bool area) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void drift_walk_grow_body(double* __restrict x, double* __restrict y,
+                                                        double* __restrict z, double* __restrict w,
+                                                        double* __restrict h, std::int64_t n,
+                                                        const Vec3& d, std::uint64_t key,
+                                                        double stddev, double gamma, bool area) {
   const double dz = d.z;
   if (area) {
     walk_grow<true>(x, y, w, h, n, d.x, d.y, key, stddev, gamma);
@@ -187,9 +212,11 @@ void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restr
   }
   const std::int64_t half = n / 2;
   double* __restrict z2 = z + half;
+  std::uint64_t input = key + vmath::kGamma;  // counter 2j + 1's, as above
   for (std::int64_t j = 0; j < half; ++j) {
     float a, b;
-    vmath::normal_pair(vmath::counter_bits(key, static_cast<std::uint64_t>(2 * j + 1)), a, b);
+    vmath::normal_pair(vmath::mix64(input), a, b);
+    input += 2 * vmath::kGamma;
     z[j] += dz + stddev * static_cast<double>(a);
     z2[j] += dz + stddev * static_cast<double>(b);
   }
@@ -200,10 +227,13 @@ void drift_walk_grow(double* __restrict x, double* __restrict y, double* __restr
   }
 }
 
-PLUMETRACE_VECTOR_CLONES
-void kernels(const Vec3& u, const double* __restrict x, const double* __restrict y,
-             const double* __restrict z, const double* __restrict h, std::int64_t m, double scale,
-             Kernel kernel, double cut2, double* __restrict out) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void kernels_body(const Vec3& u, const double* __restrict x,
+                                                const double* __restrict y,
+                                                const double* __restrict z,
+                                                const double* __restrict h, std::int64_t m,
+                                                double scale, Kernel kernel, double cut2,
+                                                double* __restrict out) {
   if (kernel == Kernel::kGaussian) {
     kernel_loop<Kernel::kGaussian>(u, x, y, z, h, m, scale, cut2, out);
   } else {
@@ -211,16 +241,39 @@ void kernels(const Vec3& u, const double* __restrict x, const double* __restrict
   }
 }
 
-PLUMETRACE_VECTOR_CLONES
-void block_most(const double* __restrict e2, const double* __restrict h_lo,
-                const double* __restrict h_hi, const double* __restrict m, std::int64_t count,
-                double scale, Kernel kernel, double* __restrict most) {
+template <simd::Path kPath>
+[[gnu::always_inline]] inline void block_most_body(const double* __restrict e2,
+                                                   const double* __restrict h_lo,
+                                                   const double* __restrict h_hi,
+                                                   const double* __restrict m, std::int64_t count,
+                                                   double scale, Kernel kernel,
+                                                   double* __restrict most) {
   if (kernel == Kernel::kGaussian) {
     most_loop<Kernel::kGaussian>(e2, h_lo, h_hi, m, count, scale, most);
   } else {
     most_loop<Kernel::kPrinted>(e2, h_lo, h_hi, m, count, scale, most);
   }
 }
+
+}  // namespace
+
+PLUMETRACE_SIMD_VERSIONS(drift_walk_grow,
+                         (double* __restrict x, double* __restrict y, double* __restrict z,
+                          double* __restrict w, double* __restrict h, std::int64_t n, const Vec3& d,
+                          std::uint64_t key, double stddev, double gamma, bool area),
+                         (x, y, z, w, h, n, d, key, stddev, gamma, area))
+
+PLUMETRACE_SIMD_VERSIONS(kernels,
+                         (const Vec3& u, const double* __restrict x, const double* __restrict y,
+                          const double* __restrict z, const double* __restrict h, std::int64_t m,
+                          double scale, Kernel kernel, double cut2, double* __restrict out),
+                         (u, x, y, z, h, m, scale, kernel, cut2, out))
+
+PLUMETRACE_SIMD_VERSIONS(block_most,
+                         (const double* __restrict e2, const double* __restrict h_lo,
+                          const double* __restrict h_hi, const double* __restrict m,
+                          std::int64_t count, double scale, Kernel kernel, double* __restrict most),
+                         (e2, h_lo, h_hi, m, count, scale, kernel, most))
 
 }  // namespace loops
 
@@ -305,15 +358,9 @@ void FilamentPlume::update_bounds() {
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   bounds_.resize(4 * blocks);  // allocates only past the capacity
-  block_boxes(x_.data(), y_.data(), n, kBlock, bounds_.data());
   h_range_.resize(2 * blocks);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const auto first = h_.begin() + static_cast<std::ptrdiff_t>(b * kBlock);
-    const auto last = h_.begin() + static_cast<std::ptrdiff_t>(std::min(n, (b + 1) * kBlock));
-    const auto [lo, hi] = std::minmax_element(first, last);
-    h_range_[2 * b] = *lo;
-    h_range_[2 * b + 1] = *hi;
-  }
+  block_ranges(simd::active(), x_.data(), y_.data(), h_.data(), n, kBlock, bounds_.data(),
+               h_range_.data());
 }
 
 void FilamentPlume::move(const WindField& wind, double dt) {
@@ -330,7 +377,7 @@ void FilamentPlume::move(const WindField& wind, double dt) {
   // random walk (second term) and width growth (eq. 3); the walk's normals come from a
   // counter-based stream so that the loop vectorises, keyed by a draw of the plume's generator
   const std::uint64_t key = rng_.next_u64();
-  loops::drift_walk_grow(x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
+  loops::drift_walk_grow(simd::active(), x_.data(), y_.data(), z_.data(), w_.data(), h_.data(),
                          static_cast<std::int64_t>(n), drift, key, walk_stddev(params_, dt),
                          width_growth(params_, dt), params_.dispersion == Dispersion::kFarrell);
   if (params_.lifetime == Lifetime::kLeaveArena) {
@@ -457,11 +504,13 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   const std::size_t n = x_.size();
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   const double margin = 1.0 + 1e-9 + 4.0 * static_cast<double>(n) * 0x1p-52;
+  const simd::Path path = simd::active();
+  const loops::KernelsLoop kernels = loops::kernels_for(path);
   const auto block_terms = [&](std::size_t b) {
     const std::size_t start = b * kBlock;
     const std::size_t m = std::min(kBlock, n - start);
-    loops::kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
-                   static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
+    kernels(u, x_.data() + start, y_.data() + start, z_.data() + start, h_.data() + start,
+            static_cast<std::int64_t>(m), scale, params_.kernel, cut2, v);
     return m;
   };
   // the blocks within the cut-off, in index order, and for a threshold test what each can add
@@ -493,8 +542,9 @@ double FilamentPlume::sum_kernels(const Vec3& u, double stop_at) const {
   }
   if (test) {
     // what each can add at most, in a vector loop
-    loops::block_most(e2.data(), h_lo.data(), h_hi.data(), count.data(),
-                      static_cast<std::int64_t>(near.size()), scale, params_.kernel, most.data());
+    loops::block_most_for(path)(e2.data(), h_lo.data(), h_hi.data(), count.data(),
+                                static_cast<std::int64_t>(near.size()), scale, params_.kernel,
+                                most.data());
     for (std::size_t c = 0; c < near.size(); ++c) bound += most[c];
     if (bound * margin < stop_at) return bound;
     // the candidates by what each can add, largest first (insertion sort: a few), and what

@@ -368,9 +368,8 @@ Vec3 MeanderWind::velocity(const Vec3& p) const {
 void MeanderWind::advect(std::span<double> x, std::span<double> y, std::span<double> z,
                          double dt) const {
   // velocity(p) * dt at every point, to the bit (wind_loops.hpp)
-  wind_loops::advect(wind_loops::fastest_path(),
-                     cells_of(region_, inv_dx_, inv_dy_, nx_, ny_, coef_), x.data(), y.data(),
-                     z.data(), 0, static_cast<std::int64_t>(x.size()), dt, mean_.z * dt);
+  wind_loops::advect(simd::active(), cells_of(region_, inv_dx_, inv_dy_, nx_, ny_, coef_), x.data(),
+                     y.data(), z.data(), 0, static_cast<std::int64_t>(x.size()), dt, mean_.z * dt);
 }
 
 }  // namespace plumetrace

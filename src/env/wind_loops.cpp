@@ -1,8 +1,8 @@
 #include "wind_loops.hpp"
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && \
-    !defined(PLUMETRACE_NO_VECTOR_CLONES)
-#define PLUMETRACE_WIND_VECTOR_PATHS 1
+#include "../core/simd_targets.hpp"
+
+#if defined(PLUMETRACE_SIMD_AVX2)
 #include <immintrin.h>
 #endif
 
@@ -10,8 +10,9 @@ namespace plumetrace::wind_loops {
 
 namespace {
 
-void advect_scalar(const CellView& g, double* x, double* y, double* z, std::int64_t first,
-                   std::int64_t n, double dt, double dz) {
+[[gnu::always_inline]] inline void advect_points(const CellView& g, double* x, double* y, double* z,
+                                                 std::int64_t first, std::int64_t n, double dt,
+                                                 double dz) {
   for (std::int64_t s = first; s < n; ++s) {
     int k;
     double tx, ty, u, v;
@@ -23,7 +24,18 @@ void advect_scalar(const CellView& g, double* x, double* y, double* z, std::int6
   }
 }
 
-#ifdef PLUMETRACE_WIND_VECTOR_PATHS
+PLUMETRACE_SCALAR_TARGET void advect_scalar(const CellView& g, double* x, double* y, double* z,
+                                            std::int64_t first, std::int64_t n, double dt,
+                                            double dz) {
+  advect_points(g, x, y, z, first, n, dt, dz);
+}
+
+void advect_baseline(const CellView& g, double* x, double* y, double* z, std::int64_t first,
+                     std::int64_t n, double dt, double dz) {
+  advect_points(g, x, y, z, first, n, dt, dz);
+}
+
+#if defined(PLUMETRACE_SIMD_AVX2)
 
 // The vector paths take several points at a time. Each lane takes the coefficients of the
 // lowest or of the highest cell of its block, chosen by a mask, without a branch: filaments sit
@@ -34,9 +46,8 @@ void advect_scalar(const CellView& g, double* x, double* y, double* z, std::int6
 // for equal zeros), truncation is truncation, and the sums and products come in the same
 // order, with no fused multiply-add; so each lane gives velocity()'s bits.
 
-__attribute__((target("avx2"))) void advect_avx2(const CellView& g, double* x, double* y, double* z,
-                                                 std::int64_t first, std::int64_t n, double dt,
-                                                 double dz) {
+PLUMETRACE_AVX2_TARGET void advect_avx2(const CellView& g, double* x, double* y, double* z,
+                                        std::int64_t first, std::int64_t n, double dt, double dz) {
   const __m256d x0 = _mm256_set1_pd(g.x0), y0 = _mm256_set1_pd(g.y0);
   const __m256d inv_dx = _mm256_set1_pd(g.inv_dx), inv_dy = _mm256_set1_pd(g.inv_dy);
   const __m256d top_x = _mm256_set1_pd(g.top_x), top_y = _mm256_set1_pd(g.top_y);
@@ -63,7 +74,7 @@ __attribute__((target("avx2"))) void advect_avx2(const CellView& g, double* x, d
     hi = _mm_max_epi32(hi, _mm_shuffle_epi32(hi, _MM_SHUFFLE(2, 3, 0, 1)));
     const __m128i in_hi = _mm_cmpeq_epi32(k, hi);
     if (_mm_movemask_epi8(_mm_or_si128(_mm_cmpeq_epi32(k, lo), in_hi)) != 0xffff) {
-      advect_scalar(g, x, y, z, s, s + 4, dt, dz);
+      advect_points(g, x, y, z, s, s + 4, dt, dz);
       continue;
     }
     // evaluate, each lane with its cell's coefficients
@@ -84,17 +95,17 @@ __attribute__((target("avx2"))) void advect_avx2(const CellView& g, double* x, d
     _mm256_storeu_pd(y + s, _mm256_add_pd(py, _mm256_mul_pd(v, step)));
     _mm256_storeu_pd(z + s, _mm256_add_pd(_mm256_loadu_pd(z + s), rise));
   }
-  advect_scalar(g, x, y, z, s, n, dt, dz);
+  advect_points(g, x, y, z, s, n, dt, dz);
 }
 
 // why: GCC 12's AVX-512 headers trip its own uninitialised-value warning
+#if defined(PLUMETRACE_SIMD_AVX512)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
-__attribute__((target("avx512f,avx512vl"))) void advect_avx512(const CellView& g, double* x,
-                                                               double* y, double* z,
-                                                               std::int64_t first, std::int64_t n,
-                                                               double dt, double dz) {
+PLUMETRACE_AVX512_TARGET void advect_avx512(const CellView& g, double* x, double* y, double* z,
+                                            std::int64_t first, std::int64_t n, double dt,
+                                            double dz) {
   const __m512d x0 = _mm512_set1_pd(g.x0), y0 = _mm512_set1_pd(g.y0);
   const __m512d inv_dx = _mm512_set1_pd(g.inv_dx), inv_dy = _mm512_set1_pd(g.inv_dy);
   const __m512d top_x = _mm512_set1_pd(g.top_x), top_y = _mm512_set1_pd(g.top_y);
@@ -123,7 +134,7 @@ __attribute__((target("avx512f,avx512vl"))) void advect_avx512(const CellView& g
     hi = _mm256_max_epi32(hi, _mm256_shuffle_epi32(hi, _MM_SHUFFLE(2, 3, 0, 1)));
     const __mmask8 in_hi = _mm256_cmpeq_epi32_mask(k, hi);
     if (static_cast<__mmask8>(_mm256_cmpeq_epi32_mask(k, lo) | in_hi) != 0xff) {
-      advect_scalar(g, x, y, z, s, s + 8, dt, dz);
+      advect_points(g, x, y, z, s, s + 8, dt, dz);
       continue;
     }
     // evaluate, each lane with its cell's coefficients
@@ -143,53 +154,32 @@ __attribute__((target("avx512f,avx512vl"))) void advect_avx512(const CellView& g
     _mm512_storeu_pd(y + s, _mm512_add_pd(py, _mm512_mul_pd(v, step)));
     _mm512_storeu_pd(z + s, _mm512_add_pd(_mm512_loadu_pd(z + s), rise));
   }
-  advect_scalar(g, x, y, z, s, n, dt, dz);
+  advect_points(g, x, y, z, s, n, dt, dz);
 }
 
 #pragma GCC diagnostic pop
+#endif
 
 #endif
 
 }  // namespace
 
-bool available(Path path) {
-  switch (path) {
-    case Path::kScalar:
-      return true;
-#ifdef PLUMETRACE_WIND_VECTOR_PATHS
-    case Path::kAvx2:
-      return __builtin_cpu_supports("avx2");
-    case Path::kAvx512:
-#ifdef PLUMETRACE_NO_AVX512
-      return false;
-#else
-      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
-#endif
-#else
-    case Path::kAvx2:
-    case Path::kAvx512:
-      return false;
-#endif
-  }
-  return false;
-}
-
-Path fastest_path() {
-  // why: a constant found once (the machine does not change under a running program)
-  static const Path path = available(Path::kAvx512) ? Path::kAvx512
-                           : available(Path::kAvx2) ? Path::kAvx2
-                                                    : Path::kScalar;
-  return path;
-}
-
-void advect(Path path, const CellView& g, double* x, double* y, double* z, std::int64_t first,
+void advect(simd::Path path, const CellView& g, double* x, double* y, double* z, std::int64_t first,
             std::int64_t n, double dt, double dz) {
-#ifdef PLUMETRACE_WIND_VECTOR_PATHS
-  if (path == Path::kAvx512) return advect_avx512(g, x, y, z, first, n, dt, dz);
-  if (path == Path::kAvx2) return advect_avx2(g, x, y, z, first, n, dt, dz);
+  switch (path) {
+    case simd::Path::kScalar:
+      return advect_scalar(g, x, y, z, first, n, dt, dz);
+#if defined(PLUMETRACE_SIMD_AVX2)
+    case simd::Path::kAvx2:
+      return advect_avx2(g, x, y, z, first, n, dt, dz);
 #endif
-  (void)path;
-  advect_scalar(g, x, y, z, first, n, dt, dz);
+#if defined(PLUMETRACE_SIMD_AVX512)
+    case simd::Path::kAvx512:
+      return advect_avx512(g, x, y, z, first, n, dt, dz);
+#endif
+    default:
+      return advect_baseline(g, x, y, z, first, n, dt, dz);
+  }
 }
 
 }  // namespace plumetrace::wind_loops

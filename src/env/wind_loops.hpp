@@ -2,10 +2,12 @@
 
 // The meandering wind's interpolation (private to the library; declared here so that tests can
 // compare every vector path with the scalar formulas, bit for bit). MeanderWind::velocity is
-// locate() and evaluate(); MeanderWind::advect is advect() on the fastest path.
+// locate() and evaluate(); MeanderWind::advect is advect() on the active path (core/simd.hpp).
 
 #include <cstddef>
 #include <cstdint>
+
+#include "plumetrace/core/simd.hpp"
 
 namespace plumetrace::wind_loops {
 
@@ -54,22 +56,10 @@ struct CellView {
   v = (c[4] + c[5] * tx) + ty * (c[6] + c[7] * tx);
 }
 
-/// The loops advect() can take; every one gives the same bits.
-enum class Path {
-  kScalar,  ///< one point at a time
-  kAvx2,    ///< four at a time (AVX2)
-  kAvx512,  ///< eight at a time (AVX-512 F and VL)
-};
-
-/// Whether this build and this machine run `path`.
-bool available(Path path);
-
-/// The widest path available, found once.
-Path fastest_path();
-
 /// Moves points first..n-1 by the grid's wind there times dt and by dz along z, each as
-/// locate(), evaluate(), then x += u dt, y += v dt, z += dz. `path` must be available.
-void advect(Path path, const CellView& g, double* x, double* y, double* z, std::int64_t first,
+/// locate(), evaluate(), then x += u dt, y += v dt, z += dz, in the version of `path` (scalar
+/// and the baseline: one point at a time; AVX2: four; AVX-512: eight), which must be available.
+void advect(simd::Path path, const CellView& g, double* x, double* y, double* z, std::int64_t first,
             std::int64_t n, double dt, double dz);
 
 }  // namespace plumetrace::wind_loops

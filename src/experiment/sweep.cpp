@@ -221,6 +221,14 @@ std::vector<TaskGroup> split_groups(std::vector<TaskGroup> groups, std::size_t w
   return split;
 }
 
+std::vector<TaskGroup> work_groups(const std::vector<ExpandedSweep>& sweeps,
+                                   const std::vector<RunTask>& tasks, bool share,
+                                   std::size_t workers) {
+  std::vector<TaskGroup> groups = plume_groups(sweeps, tasks, share);
+  if (groups.size() >= workers) return groups;
+  return split_groups(std::move(groups), 2 * workers);
+}
+
 std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const TaskGroup& group,
                               const ControllerFactory& factory) {
   std::vector<const Scenario*> scenarios;
@@ -375,8 +383,8 @@ CampaignResult run_tasks(const std::vector<ExpandedSweep>& sweeps,
                           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 
   // why: too few plumes for the threads (a sweep of few trials): split groups so every core works
-  std::vector<TaskGroup> groups = split_groups(plume_groups(sweeps, tasks, options.share_plumes),
-                                               2 * static_cast<std::size_t>(threads));
+  std::vector<TaskGroup> groups =
+      work_groups(sweeps, tasks, options.share_plumes, static_cast<std::size_t>(threads));
   // why: a thread with no group to run would only cost its stack
   const int workers = static_cast<int>(std::min(static_cast<std::size_t>(threads), groups.size()));
   GroupPool pool(sweeps, workers, options.make_controller, options.stop);

@@ -5,6 +5,7 @@
 // suite builds for, 64-bit ARM under qemu included), so each vector instruction set is checked
 // by the same comparisons.
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +18,7 @@
 #include "env/vector_math.hpp"
 #include "plumetrace/core/geometry.hpp"
 #include "plumetrace/core/rng.hpp"
+#include "plumetrace/core/simd.hpp"
 #include "plumetrace/env/filament_plume.hpp"
 #include "plumetrace/env/meander_wind.hpp"
 #include "plumetrace/sim/scenario.hpp"
@@ -47,50 +49,81 @@ namespace plumetrace::testing {
   if (n % 2 == 1) z[n - 1] += d.z + stddev * normals(n).first;
 }
 
-/// "" when the plume's loops (loops::drift_walk_grow, both width growths; loops::kernels, both
-/// kernels) give the scalar formulas' bits for filament counts of every remainder, else the
-/// first difference.
-inline std::string plume_loops_mismatch() {
+/// The scalar formula of what a block of filaments can add at most (FilamentPlume::sum_kernels).
+inline double block_bound(const PlumeParams& params, double scale, double e2, double m, double h_lo,
+                          double h_hi) {
+  const double e = params.kernel == Kernel::kGaussian ? e2 : std::sqrt(e2);
+  const double h = e > 0.0 ? std::clamp(std::sqrt(1.5 / e), h_lo, h_hi) : h_hi;
+  return m * (scale * h * h * h * vmath::exp_neg(-e * h * h));
+}
+
+/// "" when every path this machine runs (simd::available(): scalar, the baseline, AVX2,
+/// AVX-512) gives the scalar formulas' bits in the plume's loops (loops::drift_walk_grow, both
+/// width growths; loops::kernels and loops::block_most, both kernels), at lengths that leave
+/// every remainder of every vector width; else the first difference. `tested` gets the names of
+/// the paths compared.
+inline std::string plume_loops_mismatch(std::string* tested = nullptr) {
   const auto differs = [](double a, double b) {
     return std::bit_cast<std::uint64_t>(a) != std::bit_cast<std::uint64_t>(b);
   };
-  Rng rng(8);
-  for (const std::int64_t n : {1, 2, 7, 64, 1001, 1600}) {
-    std::vector<double> x(n), y(n), z(n), w(n), h(n);
-    for (std::int64_t i = 0; i < n; ++i) {
-      x[i] = 16.0 * rng.uniform();
-      y[i] = rng.uniform() - 0.5;
-      z[i] = 0.1 * rng.uniform();
-      w[i] = 0.1 + 0.05 * rng.uniform();
-      h[i] = 1.0 / w[i];
-    }
-    // one step of each width growth (the paper's, then Farrell's)
-    for (const bool area : {false, true}) {
-      auto sx = x, sy = y, sz = z, sw = w;
-      const Vec3 d{0.032, -0.001, 0.0005};
-      loops::drift_walk_grow(x.data(), y.data(), z.data(), w.data(), h.data(), n, d, 0xabcdef + n,
-                             0.0032, 4e-7, area);
-      scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7, area);
+  for (const simd::Path path : simd::available()) {
+    if (tested != nullptr) *tested += ' ' + std::string(simd::name(path));
+    const auto on = [path](std::int64_t n) {
+      return "path " + std::string(simd::name(path)) + " n " + std::to_string(n);
+    };
+    Rng rng(8);
+    for (const std::int64_t n : {1, 2, 7, 13, 64, 1001, 1600}) {
+      std::vector<double> x(n), y(n), z(n), w(n), h(n);
       for (std::int64_t i = 0; i < n; ++i) {
-        if (differs(x[i], sx[i]) || differs(y[i], sy[i]) || differs(z[i], sz[i]) ||
-            differs(w[i], sw[i]) || differs(h[i], 1.0 / sw[i])) {
-          return "drift_walk_grow: n " + std::to_string(n) + " filament " + std::to_string(i) +
-                 " area " + std::to_string(area);
+        x[i] = 16.0 * rng.uniform();
+        y[i] = rng.uniform() - 0.5;
+        z[i] = 0.1 * rng.uniform();
+        w[i] = 0.1 + 0.05 * rng.uniform();
+        h[i] = 1.0 / w[i];
+      }
+      // one step of each width growth (the paper's, then Farrell's)
+      for (const bool area : {false, true}) {
+        auto sx = x, sy = y, sz = z, sw = w;
+        const Vec3 d{0.032, -0.001, 0.0005};
+        loops::drift_walk_grow(path, x.data(), y.data(), z.data(), w.data(), h.data(), n, d,
+                               0xabcdef + n, 0.0032, 4e-7, area);
+        scalar_step(sx, sy, sz, sw, d, 0xabcdef + n, 0.0032, 4e-7, area);
+        for (std::int64_t i = 0; i < n; ++i) {
+          if (differs(x[i], sx[i]) || differs(y[i], sy[i]) || differs(z[i], sz[i]) ||
+              differs(w[i], sw[i]) || differs(h[i], 1.0 / sw[i])) {
+            return "drift_walk_grow: " + on(n) + " filament " + std::to_string(i) + " area " +
+                   std::to_string(area);
+          }
         }
       }
-    }
-    // kernels at a point, per filament, for both kernels
-    for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {
-      const PlumeParams params = plume_preset(preset);
-      const Vec3 u{8.0, 0.1, 0.0};
-      std::vector<double> out(n);
-      const double scale = kernel_value(params, 1.0, 0.0);  // amount factor: w = 1 at d = 0
-      loops::kernels(u, x.data(), y.data(), z.data(), h.data(), n, scale, params.kernel,
-                     params.cutoff * params.cutoff, out.data());
-      for (std::int64_t i = 0; i < n; ++i) {
-        const double d2 = distance_squared(u, {x[i], y[i], z[i]});
-        if (differs(out[i], kernel_value(params, w[i], d2))) {
-          return "kernels: n " + std::to_string(n) + " filament " + std::to_string(i);
+      // kernels at a point, per filament, for both kernels; what blocks at various distances
+      // can add at most
+      for (const PlumePreset preset : {PlumePreset::kLochmatter2008, PlumePreset::kPaperLiteral}) {
+        const PlumeParams params = plume_preset(preset);
+        const Vec3 u{8.0, 0.1, 0.0};
+        std::vector<double> out(n);
+        const double scale = kernel_value(params, 1.0, 0.0);  // amount factor: w = 1 at d = 0
+        loops::kernels(path, u, x.data(), y.data(), z.data(), h.data(), n, scale, params.kernel,
+                       params.cutoff * params.cutoff, out.data());
+        for (std::int64_t i = 0; i < n; ++i) {
+          const double d2 = distance_squared(u, {x[i], y[i], z[i]});
+          if (differs(out[i], kernel_value(params, w[i], d2))) {
+            return "kernels: " + on(n) + " filament " + std::to_string(i);
+          }
+        }
+        std::vector<double> e2(n), lo(n), hi(n), m(n), most(n);
+        for (std::int64_t c = 0; c < n; ++c) {
+          e2[c] = c % 5 == 0 ? 0.0 : x[c] * x[c] * 0.01;
+          lo[c] = std::min(h[c], 1.0 / (w[c] + 0.02));
+          hi[c] = h[c];
+          m[c] = static_cast<double>(1 + c % 64);
+        }
+        loops::block_most(path, e2.data(), lo.data(), hi.data(), m.data(), n, scale, params.kernel,
+                          most.data());
+        for (std::int64_t c = 0; c < n; ++c) {
+          if (differs(most[c], block_bound(params, scale, e2[c], m[c], lo[c], hi[c]))) {
+            return "block_most: " + on(n) + " block " + std::to_string(c);
+          }
         }
       }
     }

@@ -250,6 +250,14 @@ std::vector<TaskGroup> plume_groups(const std::vector<ExpandedSweep>& sweeps,
 /// work (each part simulates its plume again: the same rows, more work); otherwise unchanged.
 std::vector<TaskGroup> split_groups(std::vector<TaskGroup> groups, std::size_t wanted);
 
+/// The groups a runner of `workers` workers queues: plume_groups, split (split_groups, to twice
+/// the workers) only where there are fewer groups than workers. With a group for every worker to
+/// start with, none is split: a part simulates its plume again, which costs more than the last
+/// wave's idle workers (docs/performance.md, "Scaling past two cores").
+std::vector<TaskGroup> work_groups(const std::vector<ExpandedSweep>& sweeps,
+                                   const std::vector<RunTask>& tasks, bool share,
+                                   std::size_t workers);
+
 /// Runs a group on one shared plume: its rows in task order, each task's robots in index order.
 std::vector<RunRow> run_group(const std::vector<ExpandedSweep>& sweeps, const TaskGroup& group,
                               const ControllerFactory& factory);

@@ -160,8 +160,9 @@ int main(int argc, char** argv) {
   }
   // the vectorised loops of this build (SSE2 to AVX-512 on x86-64, NEON on ARM) against the
   // scalar formulas
+  std::string paths;
   for (const std::string& mismatch :
-       {testing::plume_loops_mismatch(), testing::wind_advect_mismatch()}) {
+       {testing::plume_loops_mismatch(&paths), testing::wind_advect_mismatch()}) {
     if (!mismatch.empty()) {
       std::fprintf(stderr, "model_bits: a vectorised loop differs from the scalar formulas: %s\n",
                    mismatch.c_str());
@@ -169,6 +170,8 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("loops: the scalar formulas' bits\n");
+  // why: on stderr, so that the lines compared are the same on every machine
+  std::fprintf(stderr, "model_bits: plume loop paths compared:%s\n", paths.c_str());
 
   print_rng();
   print_plume("default", {}, 200);

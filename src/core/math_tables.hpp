@@ -4,6 +4,7 @@
 
 namespace plumetrace::math::tables {
 
+// clang-format off
 // 2^(j/128) for j = 0..127: {nearest double, nearest double to the rest}
 inline constexpr double kExp2[128][2] = {
     {0x1.0000000000000p+0, 0x0.0p+0},
@@ -267,5 +268,6 @@ inline constexpr double kLogMid[128][2] = {
     {0x1.5fe1edad18919p-1, -0x1.ca8b610e18dbfp-55},
     {0x1.61e3efda46467p-1, -0x1.a1b727edefae3p-55},
 };
+// clang-format on
 
 }  // namespace plumetrace::math::tables

@@ -24,7 +24,7 @@ qemu=qemu-aarch64-static
 sysroot=/usr/aarch64-linux-gnu
 
 usage() {
-  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 

@@ -53,6 +53,7 @@ double makespan(const std::vector<double>& jobs, int workers) {
 struct Timed {
   std::vector<double> seconds;
   std::vector<RunRow> rows;
+  std::vector<std::size_t> counts;  // each group's rows (a team's run gives one a robot)
 };
 
 Timed time_groups(const std::vector<ExpandedSweep>& sweeps, const std::vector<TaskGroup>& groups) {
@@ -61,6 +62,7 @@ Timed time_groups(const std::vector<ExpandedSweep>& sweeps, const std::vector<Ta
     const auto start = Clock::now();
     std::vector<RunRow> rows = run_group(sweeps, g, {});
     out.seconds.push_back(seconds_since(start));
+    out.counts.push_back(rows.size());
     out.rows.insert(out.rows.end(), rows.begin(), rows.end());
   }
   return out;
@@ -133,8 +135,8 @@ int main(int argc, char** argv) {
     std::vector<double> longest = whole.seconds;
     std::sort(longest.rbegin(), longest.rend());
     for (const int p : {1, 2, 4, 8, 16, 32, 64}) {
-      const bool splits = work_groups(sweeps, tasks, true, static_cast<std::size_t>(p)).size() !=
-                          groups.size();
+      const bool splits =
+          work_groups(sweeps, tasks, true, static_cast<std::size_t>(p)).size() != groups.size();
       const std::vector<double>& jobs = splits ? split.seconds : whole.seconds;
       const double base = one / p;
       std::printf("| %d | %zu | %.2f%s | %.2f | %.2f | %.2f |\n", p,
@@ -150,9 +152,7 @@ int main(int argc, char** argv) {
       store.put_points(sweeps);
       const auto start = Clock::now();
       std::size_t at = 0;
-      for (const TaskGroup& g : groups) {
-        std::size_t rows = 0;
-        for (std::size_t r = at; r < whole.rows.size() && rows < g.size(); ++r) ++rows;
+      for (const std::size_t rows : whole.counts) {
         store.insert({whole.rows.begin() + static_cast<std::ptrdiff_t>(at),
                       whole.rows.begin() + static_cast<std::ptrdiff_t>(at + rows)});
         at += rows;

@@ -16,6 +16,7 @@
 
 #include "plumetrace/core/errors.hpp"
 #include "plumetrace/core/files.hpp"
+#include "plumetrace/core/math.hpp"
 #include "plumetrace/core/simd.hpp"
 #include "plumetrace/distributed/distributed.hpp"
 #include "plumetrace/env/filament_plume.hpp"
@@ -154,6 +155,69 @@ void BM_WholeRun(benchmark::State& state) {
                                                          std::llround(s.sim.warmup / s.sim.dt)),
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+
+// one call of an elementary function, the model's own (range 1 = 0, plumetrace::math) or the C
+// library's (1), over 1024 arguments in the range the model calls it on: exp, expm1 of [-40, 0];
+// log of (0, 2]; log1p of [0, 4]; pow(x, 1.5) of x in [1, 4] (a spiral's curvature); sin, cos of
+// [-pi, pi]; atan2, hypot of points of [-10, 10]^2; asinh of [0, 100]. Range 2 = 0 sums the
+// results (calls overlap: throughput), 1 feeds each result into the next argument (latency, as in
+// a Newton iteration). Shown per call (docs/performance.md, "The model's own maths functions")
+void BM_Math(benchmark::State& state) {
+  struct Function {
+    const char* name;
+    double lo, hi;
+    double (*own)(double, double);
+    double (*libc)(double, double);
+  };
+  static const Function functions[] = {
+      {"exp", -40, 0, [](double x, double) { return math::exp(x); },
+       [](double x, double) { return std::exp(x); }},
+      {"expm1", -40, 0, [](double x, double) { return math::expm1(x); },
+       [](double x, double) { return std::expm1(x); }},
+      {"log", 1e-9, 2, [](double x, double) { return math::log(x); },
+       [](double x, double) { return std::log(x); }},
+      {"log1p", 0, 4, [](double x, double) { return math::log1p(x); },
+       [](double x, double) { return std::log1p(x); }},
+      {"pow", 1, 4, [](double x, double) { return math::pow(x, 1.5); },
+       [](double x, double) { return std::pow(x, 1.5); }},
+      {"sin", -3.14, 3.14, [](double x, double) { return math::sin(x); },
+       [](double x, double) { return std::sin(x); }},
+      {"cos", -3.14, 3.14, [](double x, double) { return math::cos(x); },
+       [](double x, double) { return std::cos(x); }},
+      {"atan2", -10, 10, [](double x, double y) { return math::atan2(y, x); },
+       [](double x, double y) { return std::atan2(y, x); }},
+      {"hypot", -10, 10, [](double x, double y) { return math::hypot(x, y); },
+       [](double x, double y) { return std::hypot(x, y); }},
+      {"asinh", 0, 100, [](double x, double) { return math::asinh(x); },
+       [](double x, double) { return std::asinh(x); }},
+  };
+  const Function& f = functions[state.range(0)];
+  const bool own = state.range(1) == 0, chained = state.range(2) != 0;
+  const auto call = own ? f.own : f.libc;
+  state.SetLabel(std::string(f.name) + (own ? " own" : " libc") +
+                 (chained ? " latency" : " throughput"));
+  constexpr int kArgs = 1024;
+  std::vector<double> xs(kArgs), ys(kArgs);
+  Rng rng(7);
+  for (int i = 0; i < kArgs; ++i) {
+    xs[i] = f.lo + (f.hi - f.lo) * rng.uniform();
+    ys[i] = f.lo + (f.hi - f.lo) * rng.uniform();
+  }
+  for (auto _ : state) {
+    double sum = 0.0;
+    if (chained) {
+      // the next argument depends on this result, by an amount that keeps it in range
+      for (int i = 0; i < kArgs; ++i) sum = call(xs[i] + 1e-300 * sum, ys[i]);
+    } else {
+      for (int i = 0; i < kArgs; ++i) sum += call(xs[i], ys[i]);
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["per_call"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kArgs,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_Math)->ArgsProduct({benchmark::CreateDenseRange(0, 9, 1), {0, 1}, {0, 1}});
 
 // one update of the particle filter at its default particle count (the decision it takes once
 // per update_interval; the steps between add one wind sample each): the robot 3 m downwind of a

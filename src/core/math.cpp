@@ -207,6 +207,13 @@ void two_sum(double a, double b, double& s, double& err) {
   err = (a - (s - bb)) + (b - bb);
 }
 
+// the same for |a| >= |b| or a = 0, in 3 operations instead of 6 (Dekker's Fast2Sum); both give
+// a + b's rounding and its exact error, so the same s and err
+void fast_two_sum(double a, double b, double& s, double& err) {
+  s = a + b;
+  err = b - (s - a);
+}
+
 // 1 / (1 + (i + 1/2) / 128), the midpoints of the table of logarithms
 constexpr std::array<double, 128> kInvMid = [] {
   std::array<double, 128> v{};
@@ -248,16 +255,19 @@ void log_parts(double x, double& hi, double& lo) {
   e += static_cast<int>(bits >> 52) - 1023;
   const double m = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL);
   const int i = static_cast<int>((bits >> 45) & 127);
-  const double c = 1.0 + (2 * i + 1) / 256.0;
+  // c = 1 + (2 i + 1) / 256: m's top 7 bits of mantissa and a 1 after them, exactly
+  const double c = std::bit_cast<double>((bits & 0x000fe00000000000ULL) | 0x3ff0100000000000ULL);
   const double r = (m - c) * kInvMid[i];
   static constexpr std::array<double, 6> kLog1p = {-1.0 / 2, 1.0 / 3,  -1.0 / 4,
                                                    1.0 / 5,  -1.0 / 6, 1.0 / 7};
   const double rest = r * r * horner(r, kLog1p);  // log1p r - r
   const double de = static_cast<double>(e);
-  // (e ln2_hi + ln c_hi) + r, each sum split exactly, and the small terms
+  // (e ln2_hi + ln c_hi) + r, each sum split exactly, and the small terms. why Fast2Sum holds:
+  // |ln c_hi| < ln 2 <= |e ln2_hi| unless e = 0; and |r| <= 1 / (256 c) < |ln c| for e = 0, or
+  // |r| <= 2^-8 < 0.066 <= |e ln2_hi + ln c_hi| otherwise (x in (15/16, 17/16) went above)
   double s1, e1, e2;
-  two_sum(de * kLn2Hi, tables::kLogMid[i][0], s1, e1);
-  two_sum(s1, r, hi, e2);
+  fast_two_sum(de * kLn2Hi, tables::kLogMid[i][0], s1, e1);
+  fast_two_sum(s1, r, hi, e2);
   lo = (e1 + e2) + (rest + (de * kLn2Lo + tables::kLogMid[i][1]));
 }
 
@@ -315,10 +325,11 @@ double expm1(double x) {
 }
 
 double log(double x) {
-  if (x != x) return x + x;
-  if (x < 0.0) return kNaN;
-  if (x == 0.0) return -kInf;
-  if (x == kInf) return x;
+  if (!(x > 0.0 && x < kInf)) {
+    if (x != x) return x + x;
+    if (x < 0.0) return kNaN;
+    return x == 0.0 ? -kInf : x;
+  }
   double hi, lo;
   log_parts(x, hi, lo);
   return hi + lo;
@@ -345,12 +356,11 @@ double pow(double x, double y) {
     if (ax == 1.0) return 1.0;
     return (ax < 1.0) == (y < 0.0) ? kInf : 0.0;
   }
-  const bool odd = is_odd(y);
   if (x == 0.0 || ax == kInf) {
     // 0^y and inf^y: 0 or inf, with x's sign for an odd integer y
     const bool big = (x == 0.0) == (y < 0.0);
     const double v = big ? kInf : 0.0;
-    return odd && std::signbit(x) ? -v : v;
+    return std::signbit(x) && is_odd(y) ? -v : v;
   }
   if (x < 0.0 && !is_integer(y)) return kNaN;
   // the powers that are one operation, correctly rounded
@@ -377,7 +387,8 @@ double pow(double x, double y) {
     const double e = exp(z);
     v = e + e * zl;  // e^(z + zl) = e^z (1 + zl), |zl| < 2^-52 |z|
   }
-  return x < 0.0 && odd ? -v : v;
+  // why: y's parity only for x < 0 (floor and fmod are calls on the baseline x86-64)
+  return x < 0.0 && is_odd(y) ? -v : v;
 }
 
 double sin(double x) {

@@ -580,8 +580,13 @@ void World::resolve_contacts(std::size_t begin, std::size_t end) {
     for (const std::size_t j : live) {
       if (j == i) continue;
       const Vec2 pj = agents_[j]->position();
-      const double dist = math::hypot(pj.x - p.x, pj.y - p.y);
-      if (dist >= 2.0 * r + move[i] + move[j]) continue;
+      const double reach = 2.0 * r + move[i] + move[j];
+      const double dx = pj.x - p.x, dy = pj.y - p.y;
+      // why: a squared distance beyond reach^2 by more than its rounding (a few ulps) already
+      // says dist >= reach, without the hypot (same bits: the same robots go on)
+      if (dx * dx + dy * dy > reach * reach * (1.0 + 1e-12)) continue;
+      const double dist = math::hypot(dx, dy);
+      if (dist >= reach) continue;
       normals_.push_back({(pj.x - p.x) / dist, (pj.y - p.y) / dist});
       // each of the two may close half the gap, so together they never overlap
       gaps_.push_back(std::max(0.0, 0.5 * (dist - 2.0 * r)));

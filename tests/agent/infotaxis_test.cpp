@@ -170,6 +170,39 @@ TEST(Infotaxis, ExpectedEntropyIsTheAverageOverFoundHitAndNoHit) {
   EXPECT_TRUE(std::isinf(b.expected_entropy(0, 3, 1.0)));
 }
 
+TEST(Infotaxis, KeptTermsGiveTheBitsOfAFreshBeliefWhateverDurationsCameBefore) {
+  // the belief keeps each displacement's e^-mu, 1 - e^-mu and hit entropy for the last duration
+  // asked; asked for others in between, or for none before, every value is the same to the bit
+  const InfotaxisParams p = cell_params(1.5, 2.0, 0.5);
+  std::vector<double> q(12);
+  for (int x = 0; x < 12; ++x) q[x] = 1.0 + x * (x % 3);
+  double sum = 0.0;
+  for (const double v : q) sum += v;
+  for (double& v : q) v /= sum;
+  InfotaxisBelief used(p, 4, 3, {-0.6, 0.8});
+  used.set_probability(q);
+  for (const double duration : {0.7, 1.3, 0.7, 2.9}) {
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 4; ++i) {
+        InfotaxisBelief fresh(p, 4, 3, {-0.6, 0.8});
+        fresh.set_probability(q);
+        EXPECT_EQ(used.expected_entropy(i, j, duration), fresh.expected_entropy(i, j, duration))
+            << duration << " " << i << "," << j;
+      }
+    }
+  }
+  // an update for the duration of the terms kept, and for another, as without them
+  for (const bool hit : {false, true}) {
+    for (const double duration : {2.9, 0.4}) {
+      InfotaxisBelief kept = used, fresh(p, 4, 3, {-0.6, 0.8});
+      fresh.set_probability(q);
+      kept.update(1, 2, hit, duration);
+      fresh.update(1, 2, hit, duration);
+      EXPECT_EQ(kept.probability(), fresh.probability()) << hit << " " << duration;
+    }
+  }
+}
+
 TEST(Infotaxis, MovesToTheNeighbourOfLeastExpectedEntropy) {
   // 3 x 1 from the middle: the source is left with 0.7, right with 0.3. Either move leaves the
   // source known (found there, or else in the other cell): expected entropy 0 both ways, a tie

@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "plumetrace/core/errors.hpp"
+#include "plumetrace/core/math.hpp"
 #include "plumetrace/sim/scenario.hpp"
 #include "plumetrace/sim/world.hpp"
 
@@ -67,6 +69,28 @@ TEST(ParticleFilter, NoHitProbabilityIsTheProductOverPuffs) {
   EXPECT_NEAR(no_hit_probability({0.0, 0.0}, {0.5, 0.0}, puffs), 0.9813652337801229, 1e-15);
   // a source downwind of the robot sends it nothing
   EXPECT_NEAR(no_hit_probability({30.0, 0.0}, {0.5, 0.0}, puffs), 1.0, 1e-300);
+}
+
+TEST(ParticleFilter, PuffsTooFarToCountGiveTheBitsOfTheFullProduct) {
+  // the product skips the exp of a puff whose exponent is below -38 (its factor rounds to 1);
+  // puffs placed so that exponents fall on both sides of -38, and at it, give the full product's
+  // bits; a density above 1 (refused by check(), guarded all the same) is never skipped
+  std::vector<Puff> puffs;
+  for (int k = 0; k < 400; ++k) {
+    // seen from the source, exponent -25 (0.02 k)^2 = -(k / 10)^2: 0 to -1600, -38 near k = 62
+    puffs.push_back({{0.02 * k, 0.0}, 25.0, 1.0, k % 7 == 0 ? 1.0 : 0.3 + 0.001 * k});
+  }
+  puffs.push_back({{8.72, 0.0}, 0.5, 1.0, 1.0});  // exponent -38.02 seen from the source
+  puffs.push_back({{2.0, 0.0}, 25.0, 1.0, 3.0});
+  for (const Vec2 robot : {Vec2{0.0, 0.0}, Vec2{1.1, 0.3}, Vec2{4.0, -0.2}, Vec2{8.0, 0.0}}) {
+    double full = 1.0;
+    for (const Puff& p : puffs) {
+      const double dx = robot.x - p.offset.x, dy = robot.y - p.offset.y;
+      full *= 1.0 - std::min(1.0, p.density0 * math::exp(-dx * dx * p.inv_2vx -
+                                                          dy * dy * p.inv_2vy));
+    }
+    EXPECT_EQ(no_hit_probability({0.0, 0.0}, robot, puffs), full) << robot.x;
+  }
 }
 
 ParticleFilterParams small_params() {

@@ -99,11 +99,21 @@ void InfotaxisBelief::update(int i, int j, bool hit, double duration) {
   // not found: the source is not where the searcher stands
   p_[static_cast<std::size_t>(j) * nx_ + i] = 0.0;
   double prior = 0.0, posterior = 0.0;
+  // why: the terms made for choose_move serve when the interval was as long (the same values)
+  const bool cached = terms_.size() == rate_.size() && terms_duration_ == duration;
   for (int l = 0; l < ny_; ++l) {
     for (int k = 0; k < nx_; ++k) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
-      const double mu = rate(i, j, k, l) * duration;
-      scratch_[x] = p_[x] * (hit ? -math::expm1(-mu) : math::exp(-mu));
+      double like;
+      if (cached) {
+        const Terms& t = terms_[static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) +
+                                (i - k + nx_ - 1)];
+        like = hit ? t.q1 : t.q0;
+      } else {
+        const double mu = rate(i, j, k, l) * duration;
+        like = hit ? -math::expm1(-mu) : math::exp(-mu);
+      }
+      scratch_[x] = p_[x] * like;
       prior += p_[x];
       posterior += scratch_[x];
     }
@@ -120,6 +130,19 @@ void InfotaxisBelief::update(int i, int j, bool hit, double duration) {
   }
 }
 
+const std::vector<InfotaxisBelief::Terms>& InfotaxisBelief::terms(double duration) const {
+  if (terms_.size() != rate_.size() || terms_duration_ != duration) {
+    terms_.resize(rate_.size());
+    for (std::size_t d = 0; d < rate_.size(); ++d) {
+      const double mu = rate_[d] * duration;
+      const double q0 = math::exp(-mu), q1 = -math::expm1(-mu);
+      terms_[d] = {q0, q1, hit_entropy(mu, q0, q1)};
+    }
+    terms_duration_ = duration;
+  }
+  return terms_;
+}
+
 double InfotaxisBelief::expected_entropy(int i, int j, double duration) const {
   return expected_entropy(i, j, duration, entropy());
 }
@@ -131,17 +154,20 @@ double InfotaxisBelief::expected_entropy(int i, int j, double duration, double e
   // E = S + P ln P + (1 - P) ln(1 - P) - (1 - P) H(rho) + sum_x p(x) h(x)
   const std::size_t here = static_cast<std::size_t>(j) * nx_ + i;
   const double found = p_[here];
+  const std::vector<Terms>& terms = this->terms(duration);
   double rho0 = 0.0, rho1 = 0.0, sum_h = 0.0;
   for (int l = 0; l < ny_; ++l) {
+    // the terms of (i - k, j - l) for k = 0, 1, ...: rate()'s index, falling with k
+    const Terms* row = terms.data() + static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) +
+                       (i + nx_ - 1);
     for (int k = 0; k < nx_; ++k) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
       const double q = p_[x];
       if (x == here || q == 0.0) continue;
-      const double mu = rate(i, j, k, l) * duration;
-      const double q0 = math::exp(-mu), q1 = -math::expm1(-mu);
-      rho0 += q * q0;
-      rho1 += q * q1;
-      sum_h += q * hit_entropy(mu, q0, q1);
+      const Terms& t = *(row - k);
+      rho0 += q * t.q0;
+      rho1 += q * t.q1;
+      sum_h += q * t.h;
     }
   }
   const double rest = rho0 + rho1;  // 1 - P, summed

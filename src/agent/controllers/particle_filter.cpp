@@ -49,7 +49,11 @@ double no_hit_probability(const Vec2& source, const Vec2& robot, std::span<const
   for (const Puff& p : puffs) {
     const double dx = rx - p.offset.x;
     const double dy = ry - p.offset.y;
-    const double detect = p.density0 * math::exp(-dx * dx * p.inv_2vx - dy * dy * p.inv_2vy);
+    const double arg = -dx * dx * p.inv_2vx - dy * dy * p.inv_2vy;
+    // why: e^-38 < 2^-54, so with density0 <= 1 the factor 1 - detect rounds to 1 exactly; most
+    // puffs are that far from the robot, and skipping their exp gives the same bits
+    if (arg < -38.0 && p.density0 <= 1.0) continue;
+    const double detect = p.density0 * math::exp(arg);
     // why: check() keeps density0 <= 1; min() guards a probability all the same
     total *= 1.0 - std::min(1.0, detect);
   }

@@ -157,6 +157,17 @@ class InfotaxisBelief {
   std::vector<double> p_;
   std::vector<double> rate_;     // by displacement (agent - source) in cells
   std::vector<double> scratch_;  // the posterior being formed
+  // e^-mu, 1 - e^-mu and the hit entropy of mu = rate * duration by displacement, as rate_, for
+  // the duration they were last made for
+  struct Terms {
+    double q0 = 0.0, q1 = 0.0, h = 0.0;
+  };
+  const std::vector<Terms>& terms(double duration) const;
+  // why: mutable, a cache: choose_move asks every cell's terms for each of 4 moves at each cell
+  // the searcher reaches, always for the same duration; they are made once per duration, from
+  // the same expressions, so expected_entropy gives the same bits as without them
+  mutable std::vector<Terms> terms_;
+  mutable double terms_duration_ = -1.0;
 };
 
 /// Infotaxis (Vergassola, Villermaux & Shraiman 2007): at release it averages wind_samples wind

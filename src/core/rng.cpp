@@ -31,7 +31,9 @@ struct ZigguratTable {
   }
 };
 
-const ZigguratTable& table() {
+// why: inlined into normal(), so that a draw pays the guard's load and not a call (GCC stopped
+// inlining it once the table's maths became calls into plumetrace::math)
+[[gnu::always_inline]] inline const ZigguratTable& table() {
   static const ZigguratTable t;
   return t;
 }

@@ -86,8 +86,8 @@ TEST(ParticleFilter, PuffsTooFarToCountGiveTheBitsOfTheFullProduct) {
     double full = 1.0;
     for (const Puff& p : puffs) {
       const double dx = robot.x - p.offset.x, dy = robot.y - p.offset.y;
-      full *= 1.0 - std::min(1.0, p.density0 * math::exp(-dx * dx * p.inv_2vx -
-                                                          dy * dy * p.inv_2vy));
+      full *=
+          1.0 - std::min(1.0, p.density0 * math::exp(-dx * dx * p.inv_2vx - dy * dy * p.inv_2vy));
     }
     EXPECT_EQ(no_hit_probability({0.0, 0.0}, robot, puffs), full) << robot.x;
   }

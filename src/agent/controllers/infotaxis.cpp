@@ -106,8 +106,8 @@ void InfotaxisBelief::update(int i, int j, bool hit, double duration) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
       double like;
       if (cached) {
-        const Terms& t = terms_[static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) +
-                                (i - k + nx_ - 1)];
+        const Terms& t =
+            terms_[static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) + (i - k + nx_ - 1)];
         like = hit ? t.q1 : t.q0;
       } else {
         const double mu = rate(i, j, k, l) * duration;
@@ -158,8 +158,8 @@ double InfotaxisBelief::expected_entropy(int i, int j, double duration, double e
   double rho0 = 0.0, rho1 = 0.0, sum_h = 0.0;
   for (int l = 0; l < ny_; ++l) {
     // the terms of (i - k, j - l) for k = 0, 1, ...: rate()'s index, falling with k
-    const Terms* row = terms.data() + static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) +
-                       (i + nx_ - 1);
+    const Terms* row =
+        terms.data() + static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) + (i + nx_ - 1);
     for (int k = 0; k < nx_; ++k) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
       const double q = p_[x];

@@ -12,9 +12,24 @@
 namespace plumetrace::vmath {
 
 /// The SplitMix64 output function: a bijection of 64-bit values that mixes every bit.
+// a c mod 2^64 for a constant c
+inline std::uint64_t times(std::uint64_t a, std::uint64_t c) {
+#if defined(__aarch64__)
+  // why: NEON has no 64-bit lane multiply, so GCC left the loops that hash (the plume's walk)
+  // scalar; from 32-bit halves (a widening multiply for the low product, 32-bit ones for the
+  // cross terms, whose high halves drop out) it vectorises them, with the same product mod 2^64
+  const auto a_lo = static_cast<std::uint32_t>(a), a_hi = static_cast<std::uint32_t>(a >> 32);
+  const auto c_lo = static_cast<std::uint32_t>(c), c_hi = static_cast<std::uint32_t>(c >> 32);
+  const std::uint32_t cross = a_lo * c_hi + a_hi * c_lo;
+  return static_cast<std::uint64_t>(a_lo) * c_lo + (static_cast<std::uint64_t>(cross) << 32);
+#else
+  return a * c;
+#endif
+}
+
 inline std::uint64_t mix64(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z = times(z ^ (z >> 30), 0xbf58476d1ce4e5b9ULL);
+  z = times(z ^ (z >> 27), 0x94d049bb133111ebULL);
   return z ^ (z >> 31);
 }
 

@@ -32,6 +32,29 @@ TEST(VectorMath, LogMatchesLibmAcrossTheUnitInterval) {
   EXPECT_EQ(log_f(1.0f), 0.0f);
 }
 
+TEST(VectorMath, ProductsByHalvesAreTheProductsMod2To64) {
+  // the hash's product as aarch64 builds it (vmath::times), checked on every machine: the
+  // mixer's two constants and the Weyl increment against a SplitMix64 sequence of factors, and
+  // the extremes
+  std::uint64_t state = 42;
+  for (int i = 0; i < 200000; ++i) {
+    const std::uint64_t a = counter_bits(7, static_cast<std::uint64_t>(i));
+    const std::uint64_t factors[] = {0xbf58476d1ce4e5b9ULL, 0x94d049bb133111ebULL, kGamma,
+                                     counter_bits(state, 1)};
+    for (const std::uint64_t c : factors) {
+      ASSERT_EQ(times_by_halves(a, c), a * c) << a << " " << c;
+      ASSERT_EQ(times(a, c), a * c);
+    }
+    state += 1;
+  }
+  const std::uint64_t extremes[] = {0, 1, 0xffffffff, 0x100000000, ~std::uint64_t{0}};
+  for (const std::uint64_t a : extremes) {
+    for (const std::uint64_t c : extremes) {
+      EXPECT_EQ(times_by_halves(a, c), a * c) << a << " " << c;
+    }
+  }
+}
+
 TEST(VectorMath, NormalPairLiesOnItsCircleAtItsAngle) {
   for (std::uint64_t c = 0; c < 200000; ++c) {
     const std::uint64_t bits = counter_bits(12345, c);

@@ -12,16 +12,21 @@
 namespace plumetrace::vmath {
 
 /// The SplitMix64 output function: a bijection of 64-bit values that mixes every bit.
-// a c mod 2^64 for a constant c
-inline std::uint64_t times(std::uint64_t a, std::uint64_t c) {
-#if defined(__aarch64__)
-  // why: NEON has no 64-bit lane multiply, so GCC left the loops that hash (the plume's walk)
-  // scalar; from 32-bit halves (a widening multiply for the low product, 32-bit ones for the
-  // cross terms, whose high halves drop out) it vectorises them, with the same product mod 2^64
+/// a c mod 2^64 from 32-bit halves: a widening multiply for the low product, 32-bit ones for the
+/// cross terms (their high halves drop out of the result).
+inline std::uint64_t times_by_halves(std::uint64_t a, std::uint64_t c) {
   const auto a_lo = static_cast<std::uint32_t>(a), a_hi = static_cast<std::uint32_t>(a >> 32);
   const auto c_lo = static_cast<std::uint32_t>(c), c_hi = static_cast<std::uint32_t>(c >> 32);
   const std::uint32_t cross = a_lo * c_hi + a_hi * c_lo;
   return static_cast<std::uint64_t>(a_lo) * c_lo + (static_cast<std::uint64_t>(cross) << 32);
+}
+
+/// a c mod 2^64.
+inline std::uint64_t times(std::uint64_t a, std::uint64_t c) {
+#if defined(__aarch64__)
+  // why: NEON has no 64-bit lane multiply, so GCC left the loops that hash (the plume's walk)
+  // scalar; by halves it vectorises them
+  return times_by_halves(a, c);
 #else
   return a * c;
 #endif

@@ -227,7 +227,9 @@ constexpr std::array<double, 128> kInvMid = [] {
 // Elsewhere: x = 2^e m, m in [1, 2), c the midpoint of m's 1/128 of [1, 2),
 // log x = e ln 2 + ln c + log1p(r), r = (m - c) / c (|r| <= 2^-8, m - c exact), log1p r by its
 // Taylor series to r^7, ln c from the table (scripts/math_tables.py)
-void log_parts(double x, double& hi, double& lo) {
+// why: inlined into its callers (log, log1p, pow), which then wait on no memory round trip for
+// hi and lo (the same operations)
+[[gnu::always_inline]] inline void log_parts(double x, double& hi, double& lo) {
   if (x > 0.9375 && x < 1.0625) {
     const double f = x - 1.0;
     const double d = 2.0 + f, dl = f - (d - 2.0);  // 2 + f = d + dl exactly
@@ -293,9 +295,9 @@ bool is_integer(double x) { return std::floor(x) == x; }
 // x is an odd integer (finite)
 bool is_odd(double x) { return is_integer(x) && std::fabs(x) < 0x1p53 && std::fmod(x, 2.0) != 0.0; }
 
-}  // namespace
-
-double exp(double x) {
+// e^x and log(1 + x), inlined into exp and log1p and into the functions that call them (pow,
+// asinh), which then wait on no call or memory round trip (the same operations)
+[[gnu::always_inline]] inline double exp_inline(double x) {
   if (x != x) return x + x;
   if (x > kExpMax) return kInf;
   if (x < kExpMin) return 0.0;
@@ -304,6 +306,23 @@ double exp(double x) {
   const int k = exp_reduce(x, hi, tail);
   return scale2(hi + tail, k);
 }
+
+[[gnu::always_inline]] inline double log1p_inline(double x) {
+  if (x != x) return x + x;
+  if (x < -1.0) return kNaN;
+  if (x == -1.0) return -kInf;
+  if (x == kInf || std::fabs(x) < 0x1p-54) return x;
+  // why: u = 1 + x rounds; log u + (x - (u - 1)) / u puts back what the rounding lost (u - 1 is
+  // exact), to first order
+  const double u = 1.0 + x;
+  double hi, lo;
+  log_parts(u, hi, lo);
+  return hi + (lo + (x - (u - 1.0)) / u);
+}
+
+}  // namespace
+
+double exp(double x) { return exp_inline(x); }
 
 double expm1(double x) {
   if (x != x) return x + x;
@@ -335,18 +354,7 @@ double log(double x) {
   return hi + lo;
 }
 
-double log1p(double x) {
-  if (x != x) return x + x;
-  if (x < -1.0) return kNaN;
-  if (x == -1.0) return -kInf;
-  if (x == kInf || std::fabs(x) < 0x1p-54) return x;
-  // why: u = 1 + x rounds; log u + (x - (u - 1)) / u puts back what the rounding lost (u - 1 is
-  // exact), to first order
-  const double u = 1.0 + x;
-  double hi, lo;
-  log_parts(u, hi, lo);
-  return hi + (lo + (x - (u - 1.0)) / u);
-}
+double log1p(double x) { return log1p_inline(x); }
 
 double pow(double x, double y) {
   if (y == 0.0 || x == 1.0) return 1.0;
@@ -384,7 +392,7 @@ double pow(double x, double y) {
     v = 0.0;
   } else {
     const double zl = pl - (z - ph);  // what z lost of ph + pl
-    const double e = exp(z);
+    const double e = exp_inline(z);
     v = e + e * zl;  // e^(z + zl) = e^z (1 + zl), |zl| < 2^-52 |z|
   }
   // why: y's parity only for x < 0 (floor and fmod are calls on the baseline x86-64)
@@ -526,7 +534,7 @@ double asinh(double x) {
   } else {
     // log(a + sqrt(a^2 + 1)) = log1p(a + a^2 / (1 + sqrt(a^2 + 1))), no cancellation
     const double a2 = a * a;
-    v = log1p(a + a2 / (1.0 + std::sqrt(a2 + 1.0)));
+    v = log1p_inline(a + a2 / (1.0 + std::sqrt(a2 + 1.0)));
   }
   return std::copysign(v, x);
 }

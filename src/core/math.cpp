@@ -266,7 +266,7 @@ constexpr std::array<double, 128> kInvMid = [] {
   const double de = static_cast<double>(e);
   // (e ln2_hi + ln c_hi) + r, each sum split exactly, and the small terms. why Fast2Sum holds:
   // |ln c_hi| < ln 2 <= |e ln2_hi| unless e = 0; and |r| <= 1 / (256 c) < |ln c| for e = 0, or
-  // |r| <= 2^-8 < 0.066 <= |e ln2_hi + ln c_hi| otherwise (x in (15/16, 17/16) went above)
+  // |r| <= 2^-8 < 0.06 < |e ln2_hi + ln c_hi| otherwise (x in (15/16, 17/16) went above)
   double s1, e1, e2;
   fast_two_sum(de * kLn2Hi, tables::kLogMid[i][0], s1, e1);
   fast_two_sum(s1, r, hi, e2);

@@ -83,8 +83,7 @@ InfotaxisBelief::InfotaxisBelief(const InfotaxisParams& p, int nx, int ny, Vec2 
     for (int di = -(nx - 1); di <= nx - 1; ++di) {
       const Vec2 r{di * p.cell, dj * p.cell};
       const double s = r.x * downwind.x + r.y * downwind.y;
-      rate_[static_cast<std::size_t>(dj + ny - 1) * (2 * nx - 1) + (di + nx - 1)] =
-          math::exp(log_encounter_rate(p, math::hypot(r.x, r.y), s));
+      rate_[displacement(di, dj)] = math::exp(log_encounter_rate(p, math::hypot(r.x, r.y), s));
     }
   }
 }
@@ -106,8 +105,7 @@ void InfotaxisBelief::update(int i, int j, bool hit, double duration) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
       double like;
       if (cached) {
-        const Terms& t =
-            terms_[static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) + (i - k + nx_ - 1)];
+        const Terms& t = terms_[displacement(i - k, j - l)];
         like = hit ? t.q1 : t.q0;
       } else {
         const double mu = rate(i, j, k, l) * duration;
@@ -158,8 +156,7 @@ double InfotaxisBelief::expected_entropy(int i, int j, double duration, double e
   double rho0 = 0.0, rho1 = 0.0, sum_h = 0.0;
   for (int l = 0; l < ny_; ++l) {
     // the terms of (i - k, j - l) for k = 0, 1, ...: rate()'s index, falling with k
-    const Terms* row =
-        terms.data() + static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) + (i + nx_ - 1);
+    const Terms* row = terms.data() + displacement(i, j - l);
     for (int k = 0; k < nx_; ++k) {
       const std::size_t x = static_cast<std::size_t>(l) * nx_ + k;
       const double q = p_[x];

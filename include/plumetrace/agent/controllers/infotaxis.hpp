@@ -121,9 +121,7 @@ class InfotaxisBelief {
   /// Replaces the belief (normalised by the caller); for tests.
   void set_probability(const std::vector<double>& p) { p_ = p; }
   /// The model's mean encounter rate (1/s) at cell (i, j) for a source at cell (k, l).
-  double rate(int i, int j, int k, int l) const {
-    return rate_[static_cast<std::size_t>(j - l + ny_ - 1) * (2 * nx_ - 1) + (i - k + nx_ - 1)];
-  }
+  double rate(int i, int j, int k, int l) const { return rate_[displacement(i - k, j - l)]; }
   /// Entropy of the belief (nats).
   double entropy() const;
 
@@ -149,6 +147,10 @@ class InfotaxisBelief {
   double mass_within(int i, int j, double radius) const;
 
  private:
+  // the index in rate_ (and terms_) of the displacement (di, dj) = agent - source, in cells
+  std::size_t displacement(int di, int dj) const {
+    return static_cast<std::size_t>(dj + ny_ - 1) * (2 * nx_ - 1) + (di + nx_ - 1);
+  }
   // expected_entropy with the belief's entropy already computed
   double expected_entropy(int i, int j, double duration, double entropy) const;
 
